@@ -1,0 +1,13 @@
+//! triad: rigid multibody models to FMI 2.0 Co-Simulation FMUs, integrated by an
+//! energy–momentum consistent rotationless (director) scheme.
+//!
+//! Module map (dependencies point left): `math ← mechanics ← spec ← variables ← sim ← fmu ← {ffi, xml}
+//! ← package ← main`. `mechanics` knows nothing of FMI, XML, zip or serde; `ffi` is the only
+//! module with `unsafe` code.
+#![deny(unsafe_code)]
+#![warn(missing_docs)]
+
+pub mod math;
+pub mod mechanics;
+pub mod sim;
+pub mod variables;

@@ -1,0 +1,229 @@
+//! Plain description of a multibody system: what `Model::new` consumes.
+//!
+//! Everything here is in SI units. A body's *frame* is the user's frame (URDF link frame); its
+//! origin need not be the centre of mass. The world frame is fixed; gravity is given in it.
+
+use crate::math::{Mat3, Vec3};
+
+/// Index of a body in [`ModelDef::bodies`].
+pub type BodyIndex = usize;
+
+/// A rigid body.
+#[derive(Clone, Debug, PartialEq)]
+pub struct BodyDef {
+    /// Identifier, unique among bodies.
+    pub name: String,
+    /// Mass, kg, > 0.
+    pub mass: f64,
+    /// Centre of mass in the body frame, m.
+    pub com: Vec3,
+    /// Inertia tensor about the centre of mass in body axes, kg·m² (symmetric positive definite,
+    /// principal moments satisfying the triangle inequalities).
+    pub inertia: Mat3,
+}
+
+/// The lower kinematic pairs.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+pub enum JointType {
+    /// 1 rotation about `axis`; q = [angle].
+    Revolute,
+    /// 1 translation along `axis`; q = [slide].
+    Prismatic,
+    /// Translation along and rotation about `axis`; q = [slide, angle].
+    Cylindrical,
+    /// Rotations about `axis` (fixed in the parent) then `axis2` (fixed in the child); q = [α, β].
+    Universal,
+    /// 3 rotations; coordinates are a quaternion (w, x, y, z) and a relative angular velocity.
+    Spherical,
+    /// Motion in the plane normal to `axis`; q = [x, y, angle] in the joint frame.
+    Planar,
+    /// No relative motion.
+    Fixed,
+}
+
+impl JointType {
+    /// Number of scalar joint coordinates q (spherical: 4, the quaternion).
+    #[must_use]
+    pub fn nq(self) -> usize {
+        match self {
+            Self::Revolute | Self::Prismatic => 1,
+            Self::Cylindrical | Self::Universal => 2,
+            Self::Spherical => 4,
+            Self::Planar => 3,
+            Self::Fixed => 0,
+        }
+    }
+
+    /// Number of degrees of freedom (= number of rates qd).
+    #[must_use]
+    pub fn dof(self) -> usize {
+        match self {
+            Self::Revolute | Self::Prismatic => 1,
+            Self::Cylindrical | Self::Universal => 2,
+            Self::Spherical | Self::Planar => 3,
+            Self::Fixed => 0,
+        }
+    }
+
+    /// Lower-case name as written in a spec.
+    #[must_use]
+    pub fn name(self) -> &'static str {
+        match self {
+            Self::Revolute => "revolute",
+            Self::Prismatic => "prismatic",
+            Self::Cylindrical => "cylindrical",
+            Self::Universal => "universal",
+            Self::Spherical => "spherical",
+            Self::Planar => "planar",
+            Self::Fixed => "fixed",
+        }
+    }
+}
+
+/// A rigid placement: rotation then translation, `x_parent = rotation · x_local + translation`.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Frame {
+    /// Origin of the local frame in the parent frame, m.
+    pub translation: Vec3,
+    /// Rotation parent ← local (columns are the local axes in parent coordinates).
+    pub rotation: Mat3,
+}
+
+impl Frame {
+    /// The identity placement.
+    #[must_use]
+    pub fn identity() -> Self {
+        Self { translation: Vec3::zeros(), rotation: Mat3::identity() }
+    }
+}
+
+impl Default for Frame {
+    fn default() -> Self {
+        Self::identity()
+    }
+}
+
+/// Initial joint state of a tree joint (ignored for loop-closing joints, whose state follows
+/// from the tree).
+#[derive(Clone, Debug, PartialEq)]
+pub enum JointInitial {
+    /// Coordinates and rates in the order of [`JointType::nq`] / [`JointType::dof`]
+    /// (rad, m, rad/s, m/s). Empty vectors mean zeros.
+    Coords {
+        /// Joint coordinates.
+        q: Vec<f64>,
+        /// Joint rates.
+        qd: Vec<f64>,
+    },
+    /// Spherical joints: child frame relative to the joint frame as a unit quaternion
+    /// `[w, x, y, z]`, and the relative angular velocity in the child frame, rad/s.
+    Spherical {
+        /// Relative orientation.
+        quat: [f64; 4],
+        /// Relative angular velocity, child frame.
+        w: Vec3,
+    },
+}
+
+impl Default for JointInitial {
+    fn default() -> Self {
+        Self::Coords { q: Vec::new(), qd: Vec::new() }
+    }
+}
+
+/// A joint between a parent (a body or the world) and a child body.
+///
+/// Frames follow URDF: the joint frame is placed in the parent frame by `parent_frame`; at
+/// q = 0 the child's joint frame (`child_frame`, given in the child body frame) coincides with
+/// it. For tree joints `child_frame` is the identity (the child body frame *is* the joint frame
+/// at q = 0).
+#[derive(Clone, Debug, PartialEq)]
+pub struct JointDef {
+    /// Identifier, unique among joints.
+    pub name: String,
+    /// Pair type.
+    pub kind: JointType,
+    /// Parent body, `None` for the world.
+    pub parent: Option<BodyIndex>,
+    /// Child body.
+    pub child: BodyIndex,
+    /// Joint frame in the parent body frame (or the world frame).
+    pub parent_frame: Frame,
+    /// Joint frame in the child body frame.
+    pub child_frame: Frame,
+    /// Unit axis in the joint frame: rotation/slide axis, or the plane normal (planar).
+    pub axis: Vec3,
+    /// Second unit axis of a universal joint, in the joint frame, perpendicular to `axis`.
+    pub axis2: Vec3,
+    /// Whether the joint carries actuator inputs (not for planar or fixed joints).
+    pub actuated: bool,
+    /// Viscous damping on each coordinate, N·m·s/rad or N·s/m (≥ 0; tunable at run time).
+    pub damping: f64,
+    /// Linear stiffness about q = 0 on each coordinate, N·m/rad or N/m (≥ 0; tunable).
+    pub stiffness: f64,
+    /// True for a joint that closes a kinematic loop (its child already has a tree parent).
+    pub loop_closing: bool,
+    /// Initial coordinates and rates (tree joints only).
+    pub initial: JointInitial,
+}
+
+/// Declared body loads: inputs applied to `body`.
+#[derive(Clone, Debug, PartialEq)]
+pub struct BodyLoadDef {
+    /// Loaded body.
+    pub body: BodyIndex,
+    /// Adds a world-frame torque input (3 components), N·m.
+    pub torque: bool,
+    /// Adds a world-frame force input at the centre of mass (3 components), N.
+    pub force: bool,
+}
+
+/// Initial state of a body that no joint attaches to anything (a free body).
+#[derive(Clone, Debug, PartialEq)]
+pub struct FreeBodyInitial {
+    /// The free body.
+    pub body: BodyIndex,
+    /// Body frame origin, world frame, m.
+    pub position: Vec3,
+    /// Rotation world ← body.
+    pub orientation: Mat3,
+    /// Velocity of the body frame origin, world frame, m/s.
+    pub velocity: Vec3,
+    /// Angular velocity, world frame, rad/s.
+    pub angular_velocity: Vec3,
+}
+
+/// Settings of the time integrator.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct SolverSettings {
+    /// Largest internal step, s (> 0).
+    pub max_step: f64,
+    /// 2: energy–momentum midpoint scheme; 4: its symmetric triple-jump composition.
+    pub order: u8,
+    /// Newton tolerance on the scaled update/residual (default 1e-10, the level below which
+    /// conservation is at round-off, theory.md §6 item 8).
+    pub tolerance: f64,
+    /// Newton iteration limit per step (default 20).
+    pub max_iterations: usize,
+}
+
+impl Default for SolverSettings {
+    fn default() -> Self {
+        Self { max_step: 1e-3, order: 2, tolerance: 1e-10, max_iterations: 20 }
+    }
+}
+
+/// A complete multibody system, as lowered from a spec.
+#[derive(Clone, Debug, PartialEq)]
+pub struct ModelDef {
+    /// Gravity, world frame, m/s².
+    pub gravity: Vec3,
+    /// Bodies.
+    pub bodies: Vec<BodyDef>,
+    /// Joints; tree joints first in any order, loop-closing joints flagged.
+    pub joints: Vec<JointDef>,
+    /// Declared body loads.
+    pub loads: Vec<BodyLoadDef>,
+    /// Initial states of free bodies (those with no joint).
+    pub free_bodies: Vec<FreeBodyInitial>,
+}

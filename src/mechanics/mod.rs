@@ -1,0 +1,30 @@
+//! The rotationless multibody core: director bodies, quadratic joint constraints, consistent
+//! torques and the energy–momentum time step (theory.md). It knows nothing of FMI, XML, zip or
+//! serde.
+//!
+//! Coordinate conventions: body `b` has `q_b = [φ, d1, d2, d3] ∈ R¹²` — its centre of mass and
+//! the three directors (the columns of the rotation world ← body), world frame — stored at
+//! `q[12b..12b+12]`; `v` likewise. The mass matrix `diag(m I, E ⊗ I)` with the Euler tensor
+//! `E = ½ tr(J) I − J` is constant.
+//!
+//! Use: `Model::new(&def, settings)` once (validates, orders the tree, finds redundant loop
+//! constraints, computes the initial state), `State::new(&model)`, then `step(&model, &mut state, h)`
+//! as often as needed; `state.outputs()` holds every output after each step.
+
+pub mod constraint;
+pub mod def;
+mod error;
+mod model;
+mod outputs;
+mod state;
+mod step;
+
+pub use def::{
+    BodyDef, BodyIndex, BodyLoadDef, Frame, FreeBodyInitial, JointDef, JointInitial, JointType,
+    ModelDef, SolverSettings,
+};
+pub use error::{ModelError, StepError};
+pub use model::{InputSlot, Model};
+pub use outputs::{BodyOutput, JointOutput, Outputs};
+pub use state::State;
+pub use step::{step, StepStats};

@@ -1,0 +1,98 @@
+//! One simulation run shared by `triad simulate` and the FMU: communication steps made of equal
+//! internal sub-steps, with roll-back on failure. Both front ends call this, so their results are
+//! identical by construction.
+
+use crate::mechanics::{step, Model, ModelDef, ModelError, SolverSettings, State, StepError};
+
+/// Why a communication step stopped short.
+#[derive(Debug, Clone, PartialEq)]
+pub struct AdvanceError {
+    /// The sub-step failure.
+    pub error: StepError,
+    /// Time of the last good state, to which the run was rolled back, s.
+    pub last_good_time: f64,
+}
+
+/// A running simulation: the model and its state.
+#[derive(Clone, Debug)]
+pub struct Simulation {
+    model: Model,
+    state: State,
+    /// State at the start of the current communication step (roll-back target).
+    saved: State,
+}
+
+impl Simulation {
+    /// Builds the model and its initial state at `start_time`.
+    ///
+    /// # Errors
+    /// [`ModelError`] from [`Model::new`].
+    pub fn new(def: &ModelDef, settings: SolverSettings, start_time: f64) -> Result<Self, ModelError> {
+        let model = Model::new(def, settings)?;
+        let mut state = State::new(&model);
+        state.set_time(start_time);
+        let saved = state.clone();
+        Ok(Self { model, state, saved })
+    }
+
+    /// The model.
+    #[must_use]
+    pub fn model(&self) -> &Model {
+        &self.model
+    }
+
+    /// The current state.
+    #[must_use]
+    pub fn state(&self) -> &State {
+        &self.state
+    }
+
+    /// The current state, mutable (inputs, tunable parameters, restoring snapshots).
+    pub fn state_mut(&mut self) -> &mut State {
+        &mut self.state
+    }
+
+    /// Current time, s.
+    #[must_use]
+    pub fn time(&self) -> f64 {
+        self.state.time()
+    }
+
+    /// Number of equal sub-steps used for a communication step `h`: `ceil(h / max_step)`
+    /// (at least 1), with a relative slack of 1e-9 so that `h = k·max_step` takes exactly k.
+    #[must_use]
+    pub fn substeps(&self, h: f64) -> usize {
+        let ratio = h / self.model.settings().max_step;
+        let n = (ratio * (1.0 - 1e-9)).ceil();
+        if n.is_finite() && n >= 1.0 {
+            n as usize
+        } else {
+            1
+        }
+    }
+
+    /// Advances by the communication step `h` in `substeps(h)` equal sub-steps, landing on
+    /// `t + h` exactly (the last sub-step ends at the float `t + h`). Inputs are held constant.
+    ///
+    /// # Errors
+    /// On a failed sub-step the state is rolled back to the start of this communication step and
+    /// the error says why.
+    pub fn advance(&mut self, h: f64) -> Result<(), AdvanceError> {
+        let t0 = self.state.time();
+        if !(h.is_finite() && h > 0.0) {
+            return Err(AdvanceError { error: StepError::BadStep(h), last_good_time: t0 });
+        }
+        self.saved.clone_from(&self.state);
+        let n = self.substeps(h);
+        let dt = h / n as f64;
+        let t_end = t0 + h;
+        for _ in 0..n {
+            if let Err(error) = step(&self.model, &mut self.state, dt) {
+                self.state.clone_from(&self.saved);
+                return Err(AdvanceError { error, last_good_time: t0 });
+            }
+        }
+        self.state.set_time(t_end);
+        Ok(())
+    }
+}

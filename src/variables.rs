@@ -1,0 +1,143 @@
+//! THE variable table (style.md §3 rule 2): every FMU variable and `simulate` CSV column, with
+//! its value reference, name, causality, variability, initial, start, unit and accessor. The XML
+//! writer, fmi2Get/Set, ModelStructure, the GUID, `describe` and `simulate` all read it; nothing
+//! else invents a name or a value reference.
+//!
+//! PLACEHOLDER types written at project set-up; `VariableTable::new` is filled in by the spec work.
+
+use crate::mechanics::{ModelDef, SolverSettings};
+
+/// FMI causality.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+pub enum Causality {
+    /// Fixed or tunable parameter.
+    Parameter,
+    /// Input, held constant over a communication step.
+    Input,
+    /// Output.
+    Output,
+}
+
+/// FMI variability.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+pub enum Variability {
+    /// Fixed after initialisation.
+    Fixed,
+    /// Changeable between steps.
+    Tunable,
+    /// Changes continuously (Real only).
+    Continuous,
+}
+
+/// FMI `initial` attribute (`None`: attribute absent, as for inputs).
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+pub enum Initial {
+    /// `initial="exact"`.
+    Exact,
+    /// `initial="calculated"`.
+    Calculated,
+    /// No attribute.
+    None,
+}
+
+/// FMI base type of a variable.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+pub enum VarType {
+    /// `fmi2Real`.
+    Real,
+    /// `fmi2Integer`.
+    Integer,
+}
+
+/// Where a variable's value lives.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+pub enum Accessor {
+    /// `State::inputs()[i]`.
+    Input(usize),
+    /// Body frame origin component `i`.
+    BodyR { body: usize, i: usize },
+    /// Rotation matrix element `[i, j]` (0-based).
+    BodyRot { body: usize, i: usize, j: usize },
+    /// Body frame origin velocity component `i`.
+    BodyV { body: usize, i: usize },
+    /// Body angular velocity component `i`.
+    BodyW { body: usize, i: usize },
+    /// Joint coordinate `k` (spherical: quaternion component).
+    JointQ { joint: usize, k: usize },
+    /// Joint rate `k` (spherical: relative angular velocity in the child frame).
+    JointQd { joint: usize, k: usize },
+    /// `system.energy`.
+    Energy,
+    /// `system.work`.
+    Work,
+    /// `system.p[i]`.
+    P(usize),
+    /// `system.L[i]`.
+    L(usize),
+    /// `system.constraint_residual`.
+    ConstraintResidual,
+    /// `gravity[i]`.
+    Gravity(usize),
+    /// `body.B.mass`.
+    Mass(usize),
+    /// `body.B.inertia[i,j]`.
+    Inertia { body: usize, i: usize, j: usize },
+    /// `joint.J.q0[k]` (or `q0`).
+    Q0 { joint: usize, k: usize },
+    /// `joint.J.qd0[k]` (or `qd0`).
+    Qd0 { joint: usize, k: usize },
+    /// `joint.J.damping` (tunable).
+    Damping(usize),
+    /// `joint.J.stiffness` (tunable).
+    Stiffness(usize),
+    /// `solver.max_step`.
+    MaxStep,
+    /// `solver.tolerance`.
+    Tolerance,
+    /// `solver.order` (Integer).
+    Order,
+}
+
+/// One variable.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Variable {
+    /// Value reference, unique over the table.
+    pub vr: u32,
+    /// Structured name (interface.md §3), e.g. `body.link1.R[1,2]`.
+    pub name: String,
+    /// Base type.
+    pub ty: VarType,
+    /// Causality.
+    pub causality: Causality,
+    /// Variability.
+    pub variability: Variability,
+    /// Initial attribute.
+    pub initial: Initial,
+    /// Start value (inputs: 0; parameters: their value; calculated outputs: none).
+    pub start: Option<f64>,
+    /// Unit name declared in `<UnitDefinitions>` (`None` for dimensionless integers).
+    pub unit: Option<&'static str>,
+    /// Display unit (`deg` for angles), declared under its unit.
+    pub display_unit: Option<&'static str>,
+    /// What it is, with frame.
+    pub description: String,
+    /// Where the value lives.
+    pub accessor: Accessor,
+}
+
+/// The list of all variables, in ModelVariables order (index = position + 1).
+#[derive(Clone, Debug, Default, PartialEq)]
+pub struct VariableTable {
+    /// Variables in ModelVariables order.
+    pub vars: Vec<Variable>,
+}
+
+impl VariableTable {
+    /// Builds the table of a model definition (names from `def`), parameters starting at the
+    /// values of `def` and `settings`.
+    #[must_use]
+    pub fn new(def: &ModelDef, settings: &SolverSettings) -> Self {
+        let _ = (def, settings);
+        Self::default()
+    }
+}
