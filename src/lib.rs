@@ -7,7 +7,12 @@
 #![deny(unsafe_code)]
 #![warn(missing_docs)]
 
+pub mod ffi;
+pub mod fmu;
 pub mod math;
 pub mod mechanics;
+pub mod package;
 pub mod sim;
+pub mod spec;
 pub mod variables;
+pub mod xml;

@@ -1,0 +1,1 @@
+//! `triad build`: the .fmu archive. (placeholder; filled in by the FMU work)
