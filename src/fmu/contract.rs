@@ -121,13 +121,13 @@ impl Spec {
     /// Never in the stand-in.
     pub fn lower(&self) -> Result<(ModelDef, SolverSettings), SpecErrors> {
         let body = BodyDef {
-            name: "link".into(),
+            name: "link1".into(),
             mass: 1.0,
             com: Vec3::new(0.0, 0.0, -0.5),
             inertia: Mat3::from_diagonal(&Vec3::new(0.0834, 0.0834, 1e-4)),
         };
         let joint = JointDef {
-            name: "hinge".into(),
+            name: "shoulder".into(),
             kind: JointType::Revolute,
             parent: None,
             child: 0,
