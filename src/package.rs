@@ -29,8 +29,8 @@ pub fn cdylib_names() -> (&'static str, &'static str) {
     }
 }
 
-/// Finds the compiled cdylib: `$TRIAD_CDYLIB`, else next to the running executable, in its
-/// parent directory or in its `deps/` directory (covers `target/<profile>/triad`, test binaries
+/// Finds the compiled cdylib: `$TRIAD_CDYLIB`, else the newest of those next to the running
+/// executable, in its parent directory and in their `deps/` directories (covers `target/<profile>/triad`, test binaries
 /// in `target/<profile>/deps/` and examples).
 ///
 /// # Errors
@@ -38,24 +38,49 @@ pub fn cdylib_names() -> (&'static str, &'static str) {
 pub fn find_cdylib() -> Result<PathBuf, String> {
     if let Some(p) = std::env::var_os("TRIAD_CDYLIB") {
         let p = PathBuf::from(p);
-        return if p.is_file() { Ok(p) } else { Err(format!("TRIAD_CDYLIB={} is not a file", p.display())) };
+        return if p.is_file() {
+            Ok(p)
+        } else {
+            Err(format!("TRIAD_CDYLIB={} is not a file", p.display()))
+        };
     }
-    let exe = std::env::current_exe().map_err(|e| format!("cannot locate the running executable: {e}"))?;
+    let exe = std::env::current_exe()
+        .map_err(|e| format!("cannot locate the running executable: {e}"))?;
     let dir = exe.parent().ok_or("executable has no directory")?;
     let (file, _) = cdylib_names();
     let mut tried = Vec::new();
-    for d in [Some(dir.to_path_buf()), dir.parent().map(Path::to_path_buf), Some(dir.join("deps"))].into_iter().flatten() {
+    let mut found: Option<(std::time::SystemTime, PathBuf)> = None;
+    let up = dir.parent().map(Path::to_path_buf);
+    let candidates = [
+        Some(dir.to_path_buf()),
+        Some(dir.join("deps")),
+        up.clone(),
+        up.map(|u| u.join("deps")),
+    ];
+    for d in candidates.into_iter().flatten() {
         let p = d.join(file);
-        if p.is_file() {
-            return Ok(p);
+        // the newest candidate wins: cargo only copies the library up on `cargo build --lib`
+        if let Ok(modified) = p.metadata().and_then(|m| m.modified()) {
+            if found.as_ref().is_none_or(|(t, _)| modified > *t) {
+                found = Some((modified, p.clone()));
+            }
         }
         tried.push(p.display().to_string());
     }
-    Err(format!("{file} not found (looked at {}); build it with `cargo build --lib` or set TRIAD_CDYLIB", tried.join(", ")))
+    if let Some((_, p)) = found {
+        return Ok(p);
+    }
+    Err(format!(
+        "{file} not found (looked at {}); build it with `cargo build --lib` or set TRIAD_CDYLIB",
+        tried.join(", ")
+    ))
 }
 
 fn escape(s: &str) -> String {
-    s.replace('&', "&amp;").replace('<', "&lt;").replace('>', "&gt;").replace('"', "&quot;")
+    s.replace('&', "&amp;")
+        .replace('<', "&lt;")
+        .replace('>', "&gt;")
+        .replace('"', "&quot;")
 }
 
 /// The generated `documentation/index.html`: model description and the variable table.
@@ -70,7 +95,11 @@ pub fn documentation(meta: &Meta, table: &VariableTable) -> String {
         crate::xml::GENERATION_TOOL,
         escape(&meta.guid)
     );
-    for (title, causality) in [("Inputs", Causality::Input), ("Outputs", Causality::Output), ("Parameters", Causality::Parameter)] {
+    for (title, causality) in [
+        ("Inputs", Causality::Input),
+        ("Outputs", Causality::Output),
+        ("Parameters", Causality::Parameter),
+    ] {
         let _ = write!(h, "<h2>{title}</h2>\n<table>\n<tr><th>name</th><th>valueReference</th><th>unit</th><th>start</th><th>description</th></tr>\n");
         for v in table.vars.iter().filter(|v| v.causality == causality) {
             let _ = writeln!(
@@ -100,10 +129,22 @@ pub fn fmu_bytes(spec: &Spec, cdylib: &[u8]) -> Result<Vec<u8>, Box<dyn Error>> 
     let xml = write_model_description(&table, &meta)?;
     let (_, ext) = cdylib_names();
     let mut entries: Vec<(String, Vec<u8>, u32)> = vec![
-        (format!("binaries/{PLATFORM}/{}.{ext}", spec.name), cdylib.to_vec(), 0o755),
-        ("documentation/index.html".into(), documentation(&meta, &table).into_bytes(), 0o644),
+        (
+            format!("binaries/{PLATFORM}/{}.{ext}", spec.name),
+            cdylib.to_vec(),
+            0o755,
+        ),
+        (
+            "documentation/index.html".into(),
+            documentation(&meta, &table).into_bytes(),
+            0o644,
+        ),
         ("modelDescription.xml".into(), xml.into_bytes(), 0o644),
-        ("resources/model.json".into(), spec.canonical_json().into_bytes(), 0o644),
+        (
+            "resources/model.json".into(),
+            spec.canonical_json().into_bytes(),
+            0o644,
+        ),
     ];
     entries.sort_by(|a, b| a.0.cmp(&b.0));
     let mut zip = ZipWriter::new(std::io::Cursor::new(Vec::new()));
@@ -126,7 +167,10 @@ pub fn fmu_bytes(spec: &Spec, cdylib: &[u8]) -> Result<Vec<u8>, Box<dyn Error>> 
 pub fn build_fmu(spec_path: &Path, out: &Path) -> Result<PathBuf, Box<dyn Error>> {
     let spec = Spec::from_path(spec_path)?;
     let lib = find_cdylib()?;
-    let bytes = fmu_bytes(&spec, &std::fs::read(&lib).map_err(|e| format!("{}: {e}", lib.display()))?)?;
+    let bytes = fmu_bytes(
+        &spec,
+        &std::fs::read(&lib).map_err(|e| format!("{}: {e}", lib.display()))?,
+    )?;
     if let Some(dir) = out.parent().filter(|d| !d.as_os_str().is_empty()) {
         std::fs::create_dir_all(dir)?;
     }

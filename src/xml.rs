@@ -115,29 +115,32 @@ fn unit_definitions(w: &mut W, table: &VariableTable) -> io::Result<()> {
     if used.is_empty() {
         return Ok(());
     }
-    w.create_element("UnitDefinitions").write_inner_content(|w| {
-        for unit in used {
-            w.create_element("Unit").with_attribute(("name", unit)).write_inner_content(|w| {
-                let mut base = w.create_element("BaseUnit");
-                if let Some(e) = base_unit(unit) {
-                    for (name, exp) in ["kg", "m", "s", "rad"].into_iter().zip(e) {
-                        if exp != 0 {
-                            base = base.with_attribute((name, exp.to_string().as_str()));
+    w.create_element("UnitDefinitions")
+        .write_inner_content(|w| {
+            for unit in used {
+                w.create_element("Unit")
+                    .with_attribute(("name", unit))
+                    .write_inner_content(|w| {
+                        let mut base = w.create_element("BaseUnit");
+                        if let Some(e) = base_unit(unit) {
+                            for (name, exp) in ["kg", "m", "s", "rad"].into_iter().zip(e) {
+                                if exp != 0 {
+                                    base = base.with_attribute((name, exp.to_string().as_str()));
+                                }
+                            }
                         }
-                    }
-                }
-                base.write_empty()?;
-                for (name, factor) in display_units(unit) {
-                    w.create_element("DisplayUnit")
-                        .with_attribute(("name", *name))
-                        .with_attribute(("factor", real(*factor).as_str()))
-                        .write_empty()?;
-                }
-                Ok(())
-            })?;
-        }
-        Ok(())
-    })?;
+                        base.write_empty()?;
+                        for (name, factor) in display_units(unit) {
+                            w.create_element("DisplayUnit")
+                                .with_attribute(("name", *name))
+                                .with_attribute(("factor", real(*factor).as_str()))
+                                .write_empty()?;
+                        }
+                        Ok(())
+                    })?;
+            }
+            Ok(())
+        })?;
     Ok(())
 }
 
@@ -152,7 +155,9 @@ fn scalar_variable(w: &mut W, v: &Variable) -> io::Result<()> {
     e = e.with_attribute(("causality", causality(v.causality)));
     e = e.with_attribute(("variability", variability(v.variability)));
     match v.initial {
-        Initial::Exact if v.causality != Causality::Input => e = e.with_attribute(("initial", "exact")),
+        Initial::Exact if v.causality != Causality::Input => {
+            e = e.with_attribute(("initial", "exact"))
+        }
         Initial::Calculated => e = e.with_attribute(("initial", "calculated")),
         _ => {}
     }
@@ -180,8 +185,13 @@ fn scalar_variable(w: &mut W, v: &Variable) -> io::Result<()> {
 }
 
 fn model_structure(w: &mut W, table: &VariableTable) -> io::Result<()> {
-    let outputs: Vec<usize> =
-        table.vars.iter().enumerate().filter(|(_, v)| v.causality == Causality::Output).map(|(i, _)| i + 1).collect();
+    let outputs: Vec<usize> = table
+        .vars
+        .iter()
+        .enumerate()
+        .filter(|(_, v)| v.causality == Causality::Output)
+        .map(|(i, _)| i + 1)
+        .collect();
     let initial: Vec<usize> = table
         .vars
         .iter()
@@ -189,30 +199,34 @@ fn model_structure(w: &mut W, table: &VariableTable) -> io::Result<()> {
         .filter(|(_, v)| v.causality == Causality::Output && v.initial == Initial::Calculated)
         .map(|(i, _)| i + 1)
         .collect();
-    w.create_element("ModelStructure").write_inner_content(|w| {
-        if !outputs.is_empty() {
-            w.create_element("Outputs").write_inner_content(|w| {
-                for i in &outputs {
-                    // no direct feedthrough: outputs are states of the last step
-                    w.create_element("Unknown")
-                        .with_attribute(("index", i.to_string().as_str()))
-                        .with_attribute(("dependencies", ""))
-                        .write_empty()?;
-                }
-                Ok(())
-            })?;
-        }
-        if !initial.is_empty() {
-            w.create_element("InitialUnknowns").write_inner_content(|w| {
-                for i in &initial {
-                    // dependencies omitted: may depend on every parameter
-                    w.create_element("Unknown").with_attribute(("index", i.to_string().as_str())).write_empty()?;
-                }
-                Ok(())
-            })?;
-        }
-        Ok(())
-    })?;
+    w.create_element("ModelStructure")
+        .write_inner_content(|w| {
+            if !outputs.is_empty() {
+                w.create_element("Outputs").write_inner_content(|w| {
+                    for i in &outputs {
+                        // no direct feedthrough: outputs are states of the last step
+                        w.create_element("Unknown")
+                            .with_attribute(("index", i.to_string().as_str()))
+                            .with_attribute(("dependencies", ""))
+                            .write_empty()?;
+                    }
+                    Ok(())
+                })?;
+            }
+            if !initial.is_empty() {
+                w.create_element("InitialUnknowns")
+                    .write_inner_content(|w| {
+                        for i in &initial {
+                            // dependencies omitted: may depend on every parameter
+                            w.create_element("Unknown")
+                                .with_attribute(("index", i.to_string().as_str()))
+                                .write_empty()?;
+                        }
+                        Ok(())
+                    })?;
+            }
+            Ok(())
+        })?;
     Ok(())
 }
 
@@ -224,7 +238,7 @@ pub fn write_model_description(table: &VariableTable, meta: &Meta) -> io::Result
     let mut w = Writer::new_with_indent(Vec::new(), b' ', 2);
     w.write_event(Event::Decl(BytesDecl::new("1.0", Some("UTF-8"), None)))?;
     w.write_event(Event::Comment(BytesText::from_escaped(
-        " Generated by triad from the model spec; do not edit. Regenerate: UPDATE_GOLDEN=1 cargo test --test golden_xml ",
+        " Generated by triad from the model spec; do not edit. Regenerate it by running the golden_xml test with UPDATE_GOLDEN=1 ",
     )))?;
     let n_vars = table.vars.len();
     w.create_element("fmiModelDescription")
@@ -237,7 +251,9 @@ pub fn write_model_description(table: &VariableTable, meta: &Meta) -> io::Result
         .with_attribute(("numberOfEventIndicators", "0"))
         .write_inner_content(|w| {
             let attrs = CAPABILITIES.attributes();
-            let mut cs = w.create_element("CoSimulation").with_attribute(("modelIdentifier", meta.name.as_str()));
+            let mut cs = w
+                .create_element("CoSimulation")
+                .with_attribute(("modelIdentifier", meta.name.as_str()));
             for (k, v) in &attrs {
                 cs = cs.with_attribute((*k, v.as_str()));
             }
@@ -258,13 +274,17 @@ pub fn write_model_description(table: &VariableTable, meta: &Meta) -> io::Result
                 .with_attribute(("tolerance", real(meta.tolerance).as_str()))
                 .with_attribute(("stepSize", real(meta.step).as_str()))
                 .write_empty()?;
-            w.create_element("ModelVariables").write_inner_content(|w| {
-                for (i, v) in table.vars.iter().enumerate() {
-                    w.write_event(Event::Comment(BytesText::from_escaped(&format!(" index {} of {n_vars} ", i + 1))))?;
-                    scalar_variable(w, v)?;
-                }
-                Ok(())
-            })?;
+            w.create_element("ModelVariables")
+                .write_inner_content(|w| {
+                    for (i, v) in table.vars.iter().enumerate() {
+                        w.write_event(Event::Comment(BytesText::from_escaped(&format!(
+                            " index {} of {n_vars} ",
+                            i + 1
+                        ))))?;
+                        scalar_variable(w, v)?;
+                    }
+                    Ok(())
+                })?;
             model_structure(w, table)?;
             Ok(())
         })?;
@@ -277,7 +297,12 @@ pub fn write_model_description(table: &VariableTable, meta: &Meta) -> io::Result
 /// bug; tested to be empty for every shipped model).
 #[must_use]
 pub fn unknown_units(table: &VariableTable) -> Vec<&'static str> {
-    let mut v: Vec<_> = table.vars.iter().filter_map(|v| v.unit).filter(|u| base_unit(u).is_none()).collect();
+    let mut v: Vec<_> = table
+        .vars
+        .iter()
+        .filter_map(|v| v.unit)
+        .filter(|u| base_unit(u).is_none())
+        .collect();
     v.sort_unstable();
     v.dedup();
     v

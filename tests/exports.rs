@@ -11,7 +11,8 @@ use triad::ffi::types::FMI2_CS_FUNCTIONS;
 fn all_34_symbols_resolve() {
     let path = fmu_support::cdylib();
     // SAFETY (test): loading our own library runs no foreign initialisers.
-    let lib = unsafe { libloading::Library::new(&path) }.unwrap_or_else(|e| panic!("{}: {e}", path.display()));
+    let lib = unsafe { libloading::Library::new(&path) }
+        .unwrap_or_else(|e| panic!("{}: {e}", path.display()));
     let mut missing = Vec::new();
     for name in FMI2_CS_FUNCTIONS {
         // SAFETY (test): only the address is looked up, the function is not called.
@@ -31,9 +32,27 @@ fn all_34_symbols_resolve() {
 #[test]
 fn the_shared_object_needs_only_the_c_runtime() {
     let path = fmu_support::cdylib();
-    let out = std::process::Command::new("ldd").arg(&path).output().expect("ldd runs");
+    let out = std::process::Command::new("ldd")
+        .arg(&path)
+        .output()
+        .expect("ldd runs");
     let text = String::from_utf8_lossy(&out.stdout);
-    let allowed = ["linux-vdso", "libc.so", "libm.so", "libgcc_s.so", "ld-linux"];
-    let bad: Vec<&str> = text.lines().map(str::trim).filter(|l| !l.is_empty() && !allowed.iter().any(|a| l.contains(a))).collect();
-    assert!(bad.is_empty(), "unexpected dependencies of {}:\n{}", path.display(), bad.join("\n"));
+    let allowed = [
+        "linux-vdso",
+        "libc.so",
+        "libm.so",
+        "libgcc_s.so",
+        "ld-linux",
+    ];
+    let bad: Vec<&str> = text
+        .lines()
+        .map(str::trim)
+        .filter(|l| !l.is_empty() && !allowed.iter().any(|a| l.contains(a)))
+        .collect();
+    assert!(
+        bad.is_empty(),
+        "unexpected dependencies of {}:\n{}",
+        path.display(),
+        bad.join("\n")
+    );
 }

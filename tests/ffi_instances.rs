@@ -38,7 +38,14 @@ fn four_threads_equal_separate_runs() {
     let m = TestModel::pendulum();
     let separate: Vec<Vec<u64>> = (0..4).map(|k| run(&m, k, STEPS, H)).collect();
     let threaded: Vec<Vec<u64>> = std::thread::scope(|s| {
-        let hs: Vec<_> = (0..4).map(|k| s.spawn({ let m = &m; move || run(m, k, STEPS, H) })).collect();
+        let hs: Vec<_> = (0..4)
+            .map(|k| {
+                s.spawn({
+                    let m = &m;
+                    move || run(m, k, STEPS, H)
+                })
+            })
+            .collect();
         hs.into_iter().map(|h| h.join().unwrap()).collect()
     });
     assert_eq!(threaded, separate);

@@ -23,8 +23,14 @@ fn failed_step_discards_and_continues_from_the_last_good_time() {
     let ms = m.vr("solver.max_step");
     assert_eq!(f.set_real(&[ms], &[0.5]), fmi2OK);
     assert_eq!(f.setup(0.0), fmi2OK);
-    assert_eq!(unsafe { triad::ffi::common::fmi2EnterInitializationMode(f.c) }, fmi2OK);
-    assert_eq!(unsafe { triad::ffi::common::fmi2ExitInitializationMode(f.c) }, fmi2OK);
+    assert_eq!(
+        unsafe { triad::ffi::common::fmi2EnterInitializationMode(f.c) },
+        fmi2OK
+    );
+    assert_eq!(
+        unsafe { triad::ffi::common::fmi2ExitInitializationMode(f.c) },
+        fmi2OK
+    );
     let ins = m.vrs(Causality::Input);
     let outs = m.vrs(Causality::Output);
     assert_eq!(f.step(0.0, 0.1), fmi2OK);
@@ -36,7 +42,14 @@ fn failed_step_discards_and_continues_from_the_last_good_time() {
     assert_eq!((status, cat.as_str()), (fmi2Discard, "logStatusDiscard"));
     assert!(msg.contains("rolled back to t = 0.1"), "{msg}");
     assert_eq!(f.last_successful_time(), 0.1);
-    assert_eq!(f.get_real(&outs).1.iter().map(|x| x.to_bits()).collect::<Vec<_>>(), good.iter().map(|x| x.to_bits()).collect::<Vec<_>>());
+    assert_eq!(
+        f.get_real(&outs)
+            .1
+            .iter()
+            .map(|x| x.to_bits())
+            .collect::<Vec<_>>(),
+        good.iter().map(|x| x.to_bits()).collect::<Vec<_>>()
+    );
 
     // continue from the last good time
     assert_eq!(f.set_real(&ins[..1], &[0.0]), fmi2OK);

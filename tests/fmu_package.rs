@@ -31,7 +31,15 @@ fn archive_layout_determinism_and_guid() {
     let entries = unzip(&a);
     let names: Vec<&str> = entries.iter().map(|e| e.0.as_str()).collect();
     let so_name = format!("binaries/{}/{}.so", triad::package::PLATFORM, m.spec.name);
-    assert_eq!(names, vec![so_name.as_str(), "documentation/index.html", "modelDescription.xml", "resources/model.json"]);
+    assert_eq!(
+        names,
+        vec![
+            so_name.as_str(),
+            "documentation/index.html",
+            "modelDescription.xml",
+            "resources/model.json"
+        ]
+    );
     assert_eq!(entries[0].1, so);
     let xml = String::from_utf8(entries[2].1.clone()).unwrap();
     assert!(xml.contains(&format!("guid=\"{}\"", m.guid)));
@@ -65,5 +73,8 @@ fn build_fmu_writes_the_file() {
     let written = triad::package::build_fmu(&spec_path, &out).unwrap();
     assert_eq!(written, out);
     let bytes = std::fs::read(&out).unwrap();
-    assert_eq!(bytes, triad::package::fmu_bytes(&m.spec, &std::fs::read(cdylib()).unwrap()).unwrap());
+    assert_eq!(
+        bytes,
+        triad::package::fmu_bytes(&m.spec, &std::fs::read(cdylib()).unwrap()).unwrap()
+    );
 }

@@ -60,7 +60,12 @@ fn serialize_free_deserialize_in_a_fresh_instance() {
 
     // a fresh instance, never initialised, takes the state over
     let second = Fmu::new(&m);
-    assert_eq!(second.deserialize(&bytes), fmi2OK, "{:?}", second.messages());
+    assert_eq!(
+        second.deserialize(&bytes),
+        fmi2OK,
+        "{:?}",
+        second.messages()
+    );
     got.extend(drive(&second, &m, 12, 30));
     assert_eq!(got, want);
     // serialising again gives the same bytes as the uninterrupted instance at the same point
@@ -76,8 +81,14 @@ fn parameters_set_before_initialisation_travel_with_the_state() {
     let a = Fmu::new(&m);
     assert_eq!(a.set_real(&[ms], &[0.0025]), fmi2OK);
     assert_eq!(a.setup(0.0), fmi2OK);
-    assert_eq!(unsafe { triad::ffi::common::fmi2EnterInitializationMode(a.c) }, fmi2OK);
-    assert_eq!(unsafe { triad::ffi::common::fmi2ExitInitializationMode(a.c) }, fmi2OK);
+    assert_eq!(
+        unsafe { triad::ffi::common::fmi2EnterInitializationMode(a.c) },
+        fmi2OK
+    );
+    assert_eq!(
+        unsafe { triad::ffi::common::fmi2ExitInitializationMode(a.c) },
+        fmi2OK
+    );
     drive(&a, &m, 0, 3);
     let bytes = a.serialize();
     let b = Fmu::new(&m);
@@ -93,13 +104,21 @@ fn corrupt_or_foreign_states_are_rejected_and_change_nothing() {
     drive(&f, &m, 0, 3);
     let bytes = f.serialize();
     let before = f.serialize();
-    for bad in [&bytes[..bytes.len() - 3], &b"not a state at all"[..], &[][..]] {
+    for bad in [
+        &bytes[..bytes.len() - 3],
+        &b"not a state at all"[..],
+        &[][..],
+    ] {
         assert_eq!(f.deserialize(bad), fmi2Error);
     }
     let mut other = bytes.clone();
     other[20] ^= 1; // inside the GUID
     assert_eq!(f.deserialize(&other), fmi2Error);
-    assert!(f.last_message().contains("belongs to model"), "{}", f.last_message());
+    assert!(
+        f.last_message().contains("belongs to model"),
+        "{}",
+        f.last_message()
+    );
     assert_eq!(f.serialize(), before);
     assert_eq!(f.step(3.0 * H, H), fmi2OK);
 }

@@ -16,29 +16,74 @@ use triad::xml::{unknown_units, write_model_description, Meta};
 fn generate(spec: &Spec) -> String {
     let (def, settings) = spec.lower().unwrap();
     let table = contract::table(&def, &settings);
-    assert!(unknown_units(&table).is_empty(), "units without base units: {:?}", unknown_units(&table));
+    assert!(
+        unknown_units(&table).is_empty(),
+        "units without base units: {:?}",
+        unknown_units(&table)
+    );
     let mut vrs: Vec<u32> = table.vars.iter().map(|v| v.vr).collect();
     vrs.sort_unstable();
     vrs.dedup();
-    assert_eq!(vrs.len(), table.vars.len(), "value references must be unique");
+    assert_eq!(
+        vrs.len(),
+        table.vars.len(),
+        "value references must be unique"
+    );
     let xml = write_model_description(&table, &Meta::new(spec, &settings, &table)).unwrap();
     // structure
     let idx = |pred: &dyn Fn(&triad::variables::Variable) -> bool| -> String {
-        table.vars.iter().enumerate().filter(|(_, v)| pred(v)).map(|(i, _)| format!("<Unknown index=\"{}\"", i + 1)).collect::<Vec<_>>().join("")
+        table
+            .vars
+            .iter()
+            .enumerate()
+            .filter(|(_, v)| pred(v))
+            .map(|(i, _)| format!("<Unknown index=\"{}\"", i + 1))
+            .collect::<Vec<_>>()
+            .join("")
     };
     let section = |tag: &str| -> String {
-        let Some(a) = xml.find(&format!("<{tag}>")) else { return String::new() };
+        let Some(a) = xml.find(&format!("<{tag}>")) else {
+            return String::new();
+        };
         let b = xml[a..].find(&format!("</{tag}>")).unwrap() + a;
-        xml[a..b].lines().map(|l| l.trim().split(" dependencies").next().unwrap().trim_end_matches("/>").to_string()).filter(|l| l.starts_with("<Unknown")).collect()
+        xml[a..b]
+            .lines()
+            .map(|l| {
+                l.trim()
+                    .split(" dependencies")
+                    .next()
+                    .unwrap()
+                    .trim_end_matches("/>")
+                    .to_string()
+            })
+            .filter(|l| l.starts_with("<Unknown"))
+            .collect()
     };
-    assert_eq!(section("Outputs"), idx(&|v| v.causality == Causality::Output));
-    assert_eq!(section("InitialUnknowns"), idx(&|v| v.causality == Causality::Output && v.initial == Initial::Calculated));
-    for v in table.vars.iter().filter(|v| v.causality == Causality::Input) {
-        let line = xml.lines().find(|l| l.contains(&format!("name=\"{}\"", v.name))).unwrap();
+    assert_eq!(
+        section("Outputs"),
+        idx(&|v| v.causality == Causality::Output)
+    );
+    assert_eq!(
+        section("InitialUnknowns"),
+        idx(&|v| v.causality == Causality::Output && v.initial == Initial::Calculated)
+    );
+    for v in table
+        .vars
+        .iter()
+        .filter(|v| v.causality == Causality::Input)
+    {
+        let line = xml
+            .lines()
+            .find(|l| l.contains(&format!("name=\"{}\"", v.name)))
+            .unwrap();
         assert!(!line.contains("initial="), "{line}");
     }
     assert!(!xml.contains("generationDateAndTime"));
-    assert_eq!(xml, write_model_description(&table, &Meta::new(spec, &settings, &table)).unwrap(), "deterministic");
+    assert_eq!(
+        xml,
+        write_model_description(&table, &Meta::new(spec, &settings, &table)).unwrap(),
+        "deterministic"
+    );
     xml
 }
 
@@ -48,7 +93,8 @@ fn shipped_models_match_their_golden_files() {
     let update = std::env::var_os("UPDATE_GOLDEN").is_some();
     let mut stale = Vec::new();
     for (name, text) in contract::bundled() {
-        let spec = Spec::from_str(text, Format::Toml, name).unwrap_or_else(|e| panic!("{name}: {e}"));
+        let spec =
+            Spec::from_str(text, Format::Toml, name).unwrap_or_else(|e| panic!("{name}: {e}"));
         let xml = generate(&spec);
         let path = root.join(name).join("modelDescription.xml");
         if update {
@@ -57,7 +103,10 @@ fn shipped_models_match_their_golden_files() {
             stale.push(path.display().to_string());
         }
     }
-    assert!(stale.is_empty(), "stale golden files (run UPDATE_GOLDEN=1 cargo test --test golden_xml): {stale:?}");
+    assert!(
+        stale.is_empty(),
+        "stale golden files (run UPDATE_GOLDEN=1 cargo test --test golden_xml): {stale:?}"
+    );
 }
 
 #[test]

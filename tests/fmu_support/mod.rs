@@ -69,10 +69,22 @@ impl TestModel {
         let (def, settings) = spec.lower().expect("test spec lowers");
         let table = contract::table(&def, &settings);
         let guid = triad::fmu::guid::guid(&spec.canonical_json(), &table);
-        let dir = tempfile::Builder::new().prefix("triad fmu test ").tempdir().expect("tempdir");
+        let dir = tempfile::Builder::new()
+            .prefix("triad fmu test ")
+            .tempdir()
+            .expect("tempdir");
         std::fs::create_dir_all(dir.path().join("resources")).expect("mkdir");
-        std::fs::write(dir.path().join("resources/model.json"), spec.canonical_json()).expect("write");
-        Self { spec, table, guid, dir }
+        std::fs::write(
+            dir.path().join("resources/model.json"),
+            spec.canonical_json(),
+        )
+        .expect("write");
+        Self {
+            spec,
+            table,
+            guid,
+            dir,
+        }
     }
 
     pub fn pendulum() -> Self {
@@ -88,31 +100,76 @@ impl TestModel {
     }
 
     pub fn vr(&self, name: &str) -> u32 {
-        self.table.vars.iter().find(|v| v.name == name).unwrap_or_else(|| panic!("no variable {name}")).vr
+        self.table
+            .vars
+            .iter()
+            .find(|v| v.name == name)
+            .unwrap_or_else(|| panic!("no variable {name}"))
+            .vr
     }
 
     pub fn vrs(&self, c: Causality) -> Vec<u32> {
-        self.table.vars.iter().filter(|v| v.causality == c && v.ty == triad::variables::VarType::Real).map(|v| v.vr).collect()
+        self.table
+            .vars
+            .iter()
+            .filter(|v| v.causality == c && v.ty == triad::variables::VarType::Real)
+            .map(|v| v.vr)
+            .collect()
     }
 }
 
 /// Captured log messages: (status, category, message).
 pub type Log = Mutex<Vec<(i32, String, String)>>;
 
-unsafe extern "C" fn capture(env: *mut c_void, _name: *const c_char, status: i32, category: *const c_char, fmt: *const c_char, msg: *const c_char) {
+unsafe extern "C" fn capture(
+    env: *mut c_void,
+    _name: *const c_char,
+    status: i32,
+    category: *const c_char,
+    fmt: *const c_char,
+    msg: *const c_char,
+) {
     let log = unsafe { &*(env as *const Log) };
-    let fmt = unsafe { CStr::from_ptr(fmt) }.to_string_lossy().into_owned();
-    assert_eq!(fmt, "%s", "the logger must be called with the format \"%s\"");
-    let cat = unsafe { CStr::from_ptr(category) }.to_string_lossy().into_owned();
-    let msg = unsafe { CStr::from_ptr(msg) }.to_string_lossy().into_owned();
+    let fmt = unsafe { CStr::from_ptr(fmt) }
+        .to_string_lossy()
+        .into_owned();
+    assert_eq!(
+        fmt, "%s",
+        "the logger must be called with the format \"%s\""
+    );
+    let cat = unsafe { CStr::from_ptr(category) }
+        .to_string_lossy()
+        .into_owned();
+    let msg = unsafe { CStr::from_ptr(msg) }
+        .to_string_lossy()
+        .into_owned();
     log.lock().unwrap().push((status, cat, msg));
 }
 
-type Fixed6 = unsafe extern "C" fn(*mut c_void, *const c_char, i32, *const c_char, *const c_char, *const c_char);
+type Fixed6 = unsafe extern "C" fn(
+    *mut c_void,
+    *const c_char,
+    i32,
+    *const c_char,
+    *const c_char,
+    *const c_char,
+);
 
 pub fn callbacks(log: &Log) -> fmi2CallbackFunctions {
     // SAFETY (test): see the module docs for why this ABI cast is sound on the tested targets.
-    let logger = unsafe { std::mem::transmute::<Fixed6, unsafe extern "C" fn(fmi2ComponentEnvironment, fmi2String, fmi2Status, fmi2String, fmi2String, ...)>(capture as Fixed6) };
+    let logger = unsafe {
+        std::mem::transmute::<
+            Fixed6,
+            unsafe extern "C" fn(
+                fmi2ComponentEnvironment,
+                fmi2String,
+                fmi2Status,
+                fmi2String,
+                fmi2String,
+                ...
+            ),
+        >(capture as Fixed6)
+    };
     fmi2CallbackFunctions {
         logger: Some(logger),
         allocateMemory: None,
@@ -132,7 +189,13 @@ pub struct Fmu {
 // the test drives each instance from one thread at a time
 unsafe impl Send for Fmu {}
 
-pub fn instantiate_with(name: &str, ty: fmi2Type, guid: &str, uri: Option<&str>, logging_on: bool) -> (fmi2Component, Box<Log>, Box<fmi2CallbackFunctions>) {
+pub fn instantiate_with(
+    name: &str,
+    ty: fmi2Type,
+    guid: &str,
+    uri: Option<&str>,
+    logging_on: bool,
+) -> (fmi2Component, Box<Log>, Box<fmi2CallbackFunctions>) {
     let log: Box<Log> = Box::new(Mutex::new(Vec::new()));
     let cb = Box::new(callbacks(&log));
     let name = CString::new(name).unwrap();
@@ -159,8 +222,16 @@ impl Fmu {
 
     pub fn with_uri(m: &TestModel, uri: &str) -> Self {
         let (c, log, cb) = instantiate_with("inst", fmi2CoSimulation, &m.guid, Some(uri), false);
-        assert!(!c.is_null(), "instantiate failed: {:?}", log.lock().unwrap());
-        Self { c, log, _callbacks: cb }
+        assert!(
+            !c.is_null(),
+            "instantiate failed: {:?}",
+            log.lock().unwrap()
+        );
+        Self {
+            c,
+            log,
+            _callbacks: cb,
+        }
     }
 
     /// Instantiated, experiment set up at t = 0, initialised.
@@ -192,7 +263,10 @@ impl Fmu {
 
     pub fn last_successful_time(&self) -> f64 {
         let mut t = f64::NAN;
-        assert_eq!(unsafe { fmi2GetRealStatus(self.c, fmi2LastSuccessfulTime, &mut t) }, fmi2OK);
+        assert_eq!(
+            unsafe { fmi2GetRealStatus(self.c, fmi2LastSuccessfulTime, &mut t) },
+            fmi2OK
+        );
         t
     }
 
@@ -202,16 +276,27 @@ impl Fmu {
 
     /// The last logged message (panics when nothing was logged).
     pub fn last_message(&self) -> String {
-        self.log.lock().unwrap().last().map(|m| m.2.clone()).expect("a log message")
+        self.log
+            .lock()
+            .unwrap()
+            .last()
+            .map(|m| m.2.clone())
+            .expect("a log message")
     }
 
     pub fn serialize(&self) -> Vec<u8> {
         let mut st: fmi2FMUstate = std::ptr::null_mut();
         assert_eq!(unsafe { fmi2GetFMUstate(self.c, &mut st) }, fmi2OK);
         let mut n = 0usize;
-        assert_eq!(unsafe { fmi2SerializedFMUstateSize(self.c, st, &mut n) }, fmi2OK);
+        assert_eq!(
+            unsafe { fmi2SerializedFMUstateSize(self.c, st, &mut n) },
+            fmi2OK
+        );
         let mut buf = vec![0u8; n];
-        assert_eq!(unsafe { fmi2SerializeFMUstate(self.c, st, buf.as_mut_ptr().cast(), n) }, fmi2OK);
+        assert_eq!(
+            unsafe { fmi2SerializeFMUstate(self.c, st, buf.as_mut_ptr().cast(), n) },
+            fmi2OK
+        );
         assert_eq!(unsafe { fmi2FreeFMUstate(self.c, &mut st) }, fmi2OK);
         assert!(st.is_null());
         buf
@@ -219,7 +304,8 @@ impl Fmu {
 
     pub fn deserialize(&self, bytes: &[u8]) -> fmi2Status {
         let mut st: fmi2FMUstate = std::ptr::null_mut();
-        let s = unsafe { fmi2DeSerializeFMUstate(self.c, bytes.as_ptr().cast(), bytes.len(), &mut st) };
+        let s =
+            unsafe { fmi2DeSerializeFMUstate(self.c, bytes.as_ptr().cast(), bytes.len(), &mut st) };
         if s != fmi2OK {
             return s;
         }
@@ -263,11 +349,13 @@ pub fn cdylib() -> PathBuf {
     let exe = std::env::current_exe().unwrap();
     let deps = exe.parent().unwrap();
     let (file, _) = triad::package::cdylib_names();
-    for d in [deps.parent().unwrap(), deps] {
-        let p: &Path = &d.join(file);
-        if p.is_file() {
-            return p.to_path_buf();
-        }
+    let newest = [deps.parent().unwrap(), deps]
+        .into_iter()
+        .map(|d| d.join(file))
+        .filter_map(|p| Some((p.metadata().ok()?.modified().ok()?, p)))
+        .max();
+    if let Some((_, p)) = newest {
+        return p;
     }
     panic!("{file} not found next to {}", exe.display());
 }
