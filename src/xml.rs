@@ -277,7 +277,7 @@ pub fn write_model_description(table: &VariableTable, meta: &Meta) -> io::Result
             w.create_element("ModelVariables")
                 .write_inner_content(|w| {
                     for (i, v) in table.vars.iter().enumerate() {
-                        w.write_event(Event::Comment(BytesText::from_escaped(&format!(
+                        w.write_event(Event::Comment(BytesText::from_escaped(format!(
                             " index {} of {n_vars} ",
                             i + 1
                         ))))?;

@@ -12,7 +12,7 @@
 #![allow(dead_code, unsafe_code, clippy::missing_safety_doc)]
 
 use std::ffi::{c_char, c_void, CStr, CString};
-use std::path::{Path, PathBuf};
+use std::path::PathBuf;
 use std::sync::Mutex;
 use triad::ffi::common::*;
 use triad::ffi::cosim::*;
