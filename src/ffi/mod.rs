@@ -4,10 +4,10 @@
 //!
 //! Conventions (the contract with importers):
 //! - **Panics** never cross the C boundary: every body runs inside `catch_unwind`
-//!   ([`ffi_fn!`]). A panic is logged (`logStatusFatal`), poisons *that* instance (every later
+//!   (`ffi_fn!`). A panic is logged (`logStatusFatal`), poisons *that* instance (every later
 //!   call but `fmi2FreeInstance` returns `fmi2Error`) and returns `fmi2Fatal`. Other instances
 //!   are unaffected: there is no global state.
-//! - **NULL** pointers ([`non_null!`]) are logged and rejected with `fmi2Error`; an array
+//! - **NULL** pointers (`non_null!`) are logged and rejected with `fmi2Error`; an array
 //!   pointer may be NULL when its length is 0. A NULL `fmi2Component` returns `fmi2Error`
 //!   (nothing to log to).
 //! - **Logging** goes only through the importer's callback, always with the format `"%s"`.
