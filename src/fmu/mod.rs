@@ -23,6 +23,7 @@ pub mod contract;
 pub mod guid;
 pub mod instance;
 pub mod log;
+pub mod mode;
 mod params;
 pub mod resource;
 pub mod snapshot;
