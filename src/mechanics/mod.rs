@@ -11,9 +11,13 @@
 //! constraints, computes the initial state), `State::new(&model)`, then `step(&model, &mut state, h)`
 //! as often as needed; `state.outputs()` holds every output after each step.
 
+pub mod body;
 pub mod constraint;
 pub mod def;
 mod error;
+pub mod joint;
+pub mod kinematics;
+pub mod loops;
 mod model;
 mod outputs;
 mod state;
