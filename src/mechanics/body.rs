@@ -71,7 +71,12 @@ impl BodyInertia {
         if ej.min() <= 0.0 || ee.min() < -1e-12 * scale {
             return Err(bad("inertia must be positive definite with principal moments satisfying the triangle inequalities"));
         }
-        Ok(Self { mass: def.mass, euler, inertia: j, com: def.com })
+        Ok(Self {
+            mass: def.mass,
+            euler,
+            inertia: j,
+            com: def.com,
+        })
     }
 
     /// Kinetic energy `T = ½ vᵀ M v`, J, of body velocities `v` (len ≥ 12).
@@ -160,7 +165,12 @@ mod tests {
 
     fn sample() -> BodyInertia {
         let j = Mat3::new(0.4, 0.05, -0.02, 0.05, 0.3, 0.01, -0.02, 0.01, 0.25);
-        let def = BodyDef { name: "b".into(), mass: 2.5, com: Vec3::new(0.1, -0.2, 0.3), inertia: j };
+        let def = BodyDef {
+            name: "b".into(),
+            mass: 2.5,
+            com: Vec3::new(0.1, -0.2, 0.3),
+            inertia: j,
+        };
         BodyInertia::new(&def).unwrap()
     }
 
@@ -171,8 +181,14 @@ mod tests {
         let back = Mat3::identity() * b.euler.trace() - b.euler;
         assert!((back - b.inertia).amax() < 1e-15);
         let (m, a, bb, c) = (3.0, 1.0, 0.6, 0.3);
-        let j = Mat3::from_diagonal(&Vec3::new(bb * bb + c * c, a * a + c * c, a * a + bb * bb)) * (m / 12.0);
-        let def = BodyDef { name: "box".into(), mass: m, com: Vec3::zeros(), inertia: j };
+        let j = Mat3::from_diagonal(&Vec3::new(bb * bb + c * c, a * a + c * c, a * a + bb * bb))
+            * (m / 12.0);
+        let def = BodyDef {
+            name: "box".into(),
+            mass: m,
+            com: Vec3::zeros(),
+            inertia: j,
+        };
         let e = BodyInertia::new(&def).unwrap().euler;
         let want = Mat3::from_diagonal(&Vec3::new(a * a, bb * bb, c * c)) * (m / 12.0);
         assert!((e - want).amax() < 1e-15);

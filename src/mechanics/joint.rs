@@ -136,7 +136,9 @@ impl JointGeom {
     /// axis (see [`joint_frame`]).
     pub fn new(def: &JointDef, bodies: &[BodyDef]) -> Result<Self, ModelError> {
         let bad = |what: &str| ModelError::Invalid(format!("joint '{}': {what}", def.name));
-        let child = bodies.get(def.child).ok_or_else(|| bad("child body index out of range"))?;
+        let child = bodies
+            .get(def.child)
+            .ok_or_else(|| bad("child body index out of range"))?;
         if def.parent == Some(def.child) {
             return Err(bad("parent and child are the same body"));
         }
@@ -145,7 +147,9 @@ impl JointGeom {
         let cb = def.child_frame.rotation * s;
         let (a, p_a) = match def.parent {
             Some(k) => {
-                let parent = bodies.get(k).ok_or_else(|| bad("parent body index out of range"))?;
+                let parent = bodies
+                    .get(k)
+                    .ok_or_else(|| bad("parent body index out of range"))?;
                 let x = def.parent_frame.translation - parent.com;
                 (
                     std::array::from_fn(|k| LinVec::axis_a(&ca.column(k).into_owned())),
@@ -160,8 +164,9 @@ impl JointGeom {
         let b: [LinVec; 3] = std::array::from_fn(|k| LinVec::axis_b(&cb.column(k).into_owned()));
         let r = LinVec::point_b(&(def.child_frame.translation - child.com)).sub(&p_a);
         let dot = |u: LinVec, w: LinVec| DotRow::new(u, w, 0.0);
-        let point: Vec<DotRow> =
-            (0..3).map(|k| DotRow::component(r, Vec3::ith(k, 1.0))).collect();
+        let point: Vec<DotRow> = (0..3)
+            .map(|k| DotRow::component(r, Vec3::ith(k, 1.0)))
+            .collect();
         let axial = [dot(a[2], b[0]), dot(a[2], b[1])];
         let mut rows = Vec::new();
         let mut dofs = Vec::new();
@@ -191,20 +196,36 @@ impl JointGeom {
             JointType::Planar => {
                 rows.push(dot(r, a[2]));
                 rows.extend(&axial);
-                dofs.extend([Dof::Slide(dot(r, a[0])), Dof::Slide(dot(r, a[1])), Dof::Turn(a[2])]);
+                dofs.extend([
+                    Dof::Slide(dot(r, a[0])),
+                    Dof::Slide(dot(r, a[1])),
+                    Dof::Turn(a[2]),
+                ]);
             }
             JointType::Fixed => {
                 rows.extend(&point);
                 rows.extend([dot(a[0], b[1]), dot(a[1], b[2]), dot(a[2], b[0])]);
             }
         }
-        Ok(Self { parent: def.parent, child: def.child, kind: def.kind, frame: s, rows, dofs, r, a, b })
+        Ok(Self {
+            parent: def.parent,
+            child: def.child,
+            kind: def.kind,
+            frame: s,
+            rows,
+            dofs,
+            r,
+            a,
+            b,
+        })
     }
 
     /// The axes `[a]` and `[b]` (columns, world frame) at nodes `qa`, `qb`.
     #[must_use]
     pub fn axes(&self, qa: &Nodes, qb: &Nodes) -> (Mat3, Mat3) {
-        let ev = |v: &[LinVec; 3]| Mat3::from_columns(&[v[0].eval(qa, qb), v[1].eval(qa, qb), v[2].eval(qa, qb)]);
+        let ev = |v: &[LinVec; 3]| {
+            Mat3::from_columns(&[v[0].eval(qa, qb), v[1].eval(qa, qb), v[2].eval(qa, qb)])
+        };
         (ev(&self.a), ev(&self.b))
     }
 
@@ -215,7 +236,13 @@ impl JointGeom {
         let (a, b) = self.axes(qa, qb);
         let rel = a.transpose() * b;
         let r = self.r.eval(qa, qb);
-        let wrap = |x: f64| if x <= -std::f64::consts::PI { std::f64::consts::PI } else { x };
+        let wrap = |x: f64| {
+            if x <= -std::f64::consts::PI {
+                std::f64::consts::PI
+            } else {
+                x
+            }
+        };
         let theta = wrap(rel[(1, 0)].atan2(rel[(0, 0)]));
         let along = |k: usize| r.dot(&a.column(k));
         match self.kind {
@@ -234,7 +261,9 @@ impl JointGeom {
                 out[1] = along(1);
                 out[2] = theta;
             }
-            JointType::Spherical => out.copy_from_slice(&matrix_to_quat(&(self.frame * rel * self.frame.transpose()))),
+            JointType::Spherical => out.copy_from_slice(&matrix_to_quat(
+                &(self.frame * rel * self.frame.transpose()),
+            )),
             JointType::Fixed => {}
         }
     }
@@ -243,7 +272,8 @@ impl JointGeom {
     /// `out.len() == kind.dof()`: rad/s and m/s in the order of [`JointType::dof`]; spherical:
     /// the relative angular velocity in the child joint frame, `[b]ᵀ(ω_B − ω_A)`.
     pub fn rates(&self, qa: &Nodes, qb: &Nodes, va: &Nodes, vb: &Nodes, out: &mut [f64]) {
-        let omega = |q: &Nodes, v: &Nodes| (1..NODES).map(|i| q[i].cross(&v[i])).sum::<Vec3>() * 0.5;
+        let omega =
+            |q: &Nodes, v: &Nodes| (1..NODES).map(|i| q[i].cross(&v[i])).sum::<Vec3>() * 0.5;
         let w = omega(qb, vb) - omega(qa, va);
         if self.kind == JointType::Spherical {
             for (k, b) in self.b.iter().enumerate() {
@@ -257,7 +287,9 @@ impl JointGeom {
                 Dof::Slide(row) => {
                     let mut g = [Vec3::zeros(); 2 * NODES];
                     row.gradient(qa, qb, &mut g);
-                    (0..NODES).map(|i| g[i].dot(&va[i]) + g[NODES + i].dot(&vb[i])).sum()
+                    (0..NODES)
+                        .map(|i| g[i].dot(&va[i]) + g[NODES + i].dot(&vb[i]))
+                        .sum()
                 }
             };
         }
@@ -266,7 +298,10 @@ impl JointGeom {
     /// Largest constraint violation `max_k |g_k|` at `qa`, `qb` (m or 1).
     #[must_use]
     pub fn residual(&self, qa: &Nodes, qb: &Nodes) -> f64 {
-        self.rows.iter().map(|row| row.eval(qa, qb).abs()).fold(0.0, f64::max)
+        self.rows
+            .iter()
+            .map(|row| row.eval(qa, qb).abs())
+            .fold(0.0, f64::max)
     }
 }
 
@@ -276,7 +311,14 @@ mod tests {
 
     #[test]
     fn axis_frames_are_rotations() {
-        let axes = [Vec3::x(), -Vec3::y(), Vec3::z(), -Vec3::z(), Vec3::new(0.3, -0.4, 0.5).normalize(), Vec3::new(0.3, 0.4, -0.86).normalize()];
+        let axes = [
+            Vec3::x(),
+            -Vec3::y(),
+            Vec3::z(),
+            -Vec3::z(),
+            Vec3::new(0.3, -0.4, 0.5).normalize(),
+            Vec3::new(0.3, 0.4, -0.86).normalize(),
+        ];
         for n in &axes {
             let s = axis_frame(n);
             assert!((s.transpose() * s - Mat3::identity()).amax() < 1e-15, "{n}");

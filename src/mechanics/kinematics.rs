@@ -50,8 +50,14 @@ pub fn tree_order(def: &ModelDef) -> Result<TreeOrder, ModelError> {
         if joint.loop_closing {
             loop_joints.push(j);
         } else if let Some(other) = tree_joint[joint.child].replace(j) {
-            let msg = format!("is the child of two tree joints ('{}', '{}'); mark one loop_closing", def.joints[other].name, joint.name);
-            return Err(ModelError::Invalid(format!("body '{}' {msg}", name(joint.child))));
+            let msg = format!(
+                "is the child of two tree joints ('{}', '{}'); mark one loop_closing",
+                def.joints[other].name, joint.name
+            );
+            return Err(ModelError::Invalid(format!(
+                "body '{}' {msg}",
+                name(joint.child)
+            )));
         }
     }
     let mut free = vec![None; n];
@@ -60,11 +66,17 @@ pub fn tree_order(def: &ModelDef) -> Result<TreeOrder, ModelError> {
             return Err(ModelError::Invalid("free body index out of range".into()));
         }
         if tree_joint[f.body].is_some() || free[f.body].replace(k).is_some() {
-            return Err(ModelError::Invalid(format!("body '{}' has both a joint and a free-body pose, or two poses", name(f.body))));
+            return Err(ModelError::Invalid(format!(
+                "body '{}' has both a joint and a free-body pose, or two poses",
+                name(f.body)
+            )));
         }
     }
     if let Some(b) = (0..n).find(|&b| tree_joint[b].is_none() && free[b].is_none()) {
-        return Err(ModelError::Invalid(format!("body '{}' has no pose: no tree joint and no free-body initial state", name(b))));
+        return Err(ModelError::Invalid(format!(
+            "body '{}' has no pose: no tree joint and no free-body initial state",
+            name(b)
+        )));
     }
     // walk up each chain until a placed body or a root; a body met twice on one walk is a cycle
     let mut placed = vec![false; n];
@@ -74,7 +86,10 @@ pub fn tree_order(def: &ModelDef) -> Result<TreeOrder, ModelError> {
         let mut b = Some(start);
         while let Some(k) = b.filter(|&k| !placed[k]) {
             if chain.contains(&k) {
-                return Err(ModelError::Invalid(format!("tree joints form a cycle through body '{}'", name(k))));
+                return Err(ModelError::Invalid(format!(
+                    "tree joints form a cycle through body '{}'",
+                    name(k)
+                )));
             }
             chain.push(k);
             b = tree_joint[k].and_then(|j| def.joints[j].parent);
@@ -84,7 +99,12 @@ pub fn tree_order(def: &ModelDef) -> Result<TreeOrder, ModelError> {
             order.push(k);
         }
     }
-    Ok(TreeOrder { order, tree_joint, free, loop_joints })
+    Ok(TreeOrder {
+        order,
+        tree_joint,
+        free,
+        loop_joints,
+    })
 }
 
 /// Initial coordinates (len `nq`) and rates (len `dof`) of a joint; spherical coordinates are
@@ -97,15 +117,33 @@ pub fn joint_initial(def: &JointDef) -> Result<(Vec<f64>, Vec<f64>), ModelError>
     let bad = |what: String| ModelError::Invalid(format!("joint '{}': {what}", def.name));
     let (nq, nd) = (def.kind.nq(), def.kind.dof());
     let (mut q, qd) = match &def.initial {
-        JointInitial::Spherical { quat, w } if def.kind == JointType::Spherical => (quat.to_vec(), w.as_slice().to_vec()),
-        JointInitial::Spherical { .. } => return Err(bad("a quaternion initial state needs a spherical joint".into())),
+        JointInitial::Spherical { quat, w } if def.kind == JointType::Spherical => {
+            (quat.to_vec(), w.as_slice().to_vec())
+        }
+        JointInitial::Spherical { .. } => {
+            return Err(bad(
+                "a quaternion initial state needs a spherical joint".into()
+            ))
+        }
         JointInitial::Coords { q, qd } => (
-            if q.is_empty() { zeros_or_identity(def.kind) } else { q.clone() },
-            if qd.is_empty() { vec![0.0; nd] } else { qd.clone() },
+            if q.is_empty() {
+                zeros_or_identity(def.kind)
+            } else {
+                q.clone()
+            },
+            if qd.is_empty() {
+                vec![0.0; nd]
+            } else {
+                qd.clone()
+            },
         ),
     };
     if q.len() != nq || qd.len() != nd {
-        return Err(bad(format!("initial q needs {nq} and qd {nd} values, got {} and {}", q.len(), qd.len())));
+        return Err(bad(format!(
+            "initial q needs {nq} and qd {nd} values, got {} and {}",
+            q.len(),
+            qd.len()
+        )));
     }
     if !q.iter().chain(&qd).all(|x| x.is_finite()) {
         return Err(bad("initial values must be finite".into()));
@@ -133,7 +171,11 @@ fn zeros_or_identity(kind: JointType) -> Vec<f64> {
 /// parent joint frame; `s` is the joint's internal frame `S`.
 #[must_use]
 pub fn joint_motion(kind: JointType, s: &Mat3, q: &[f64], qd: &[f64]) -> (Mat3, Vec3, Vec3, Vec3) {
-    let (e1, e2, n) = (s.column(0).into_owned(), s.column(1).into_owned(), s.column(2).into_owned());
+    let (e1, e2, n) = (
+        s.column(0).into_owned(),
+        s.column(1).into_owned(),
+        s.column(2).into_owned(),
+    );
     let z = Vec3::zeros();
     match kind {
         JointType::Revolute => (exp_so3(&(n * q[0])), z, n * qd[0], z),
@@ -141,9 +183,19 @@ pub fn joint_motion(kind: JointType, s: &Mat3, q: &[f64], qd: &[f64]) -> (Mat3, 
         JointType::Cylindrical => (exp_so3(&(n * q[1])), n * q[0], n * qd[1], n * qd[0]),
         JointType::Universal => {
             let ra = exp_so3(&(e1 * q[0]));
-            (ra * exp_so3(&(e2 * q[1])), z, e1 * qd[0] + ra * e2 * qd[1], z)
+            (
+                ra * exp_so3(&(e2 * q[1])),
+                z,
+                e1 * qd[0] + ra * e2 * qd[1],
+                z,
+            )
         }
-        JointType::Planar => (exp_so3(&(n * q[2])), e1 * q[0] + e2 * q[1], n * qd[2], e1 * qd[0] + e2 * qd[1]),
+        JointType::Planar => (
+            exp_so3(&(n * q[2])),
+            e1 * q[0] + e2 * q[1],
+            n * qd[2],
+            e1 * qd[0] + e2 * qd[1],
+        ),
         JointType::Spherical => {
             let m = quat_to_matrix(&[q[0], q[1], q[2], q[3]]);
             let w = m * Vec3::new(qd[0], qd[1], qd[2]);
@@ -155,10 +207,15 @@ pub fn joint_motion(kind: JointType, s: &Mat3, q: &[f64], qd: &[f64]) -> (Mat3, 
 
 /// Checks that a frame rotation is orthonormal and right-handed (to 1e-9).
 fn check_rotation(r: &Mat3, what: &str) -> Result<(), ModelError> {
-    if r.iter().all(|x| x.is_finite()) && (r.transpose() * r - Mat3::identity()).amax() < 1e-9 && r.determinant() > 0.0 {
+    if r.iter().all(|x| x.is_finite())
+        && (r.transpose() * r - Mat3::identity()).amax() < 1e-9
+        && r.determinant() > 0.0
+    {
         Ok(())
     } else {
-        Err(ModelError::Invalid(format!("{what}: rotation is not orthonormal and right-handed")))
+        Err(ModelError::Invalid(format!(
+            "{what}: rotation is not orthonormal and right-handed"
+        )))
     }
 }
 
@@ -172,22 +229,38 @@ fn check_rotation(r: &Mat3, what: &str) -> Result<(), ModelError> {
 pub fn initial_configuration(def: &ModelDef) -> Result<(Vec<f64>, Vec<f64>), ModelError> {
     let tree = tree_order(def)?;
     let n = def.bodies.len();
-    let inertia = def.bodies.iter().map(BodyInertia::new).collect::<Result<Vec<_>, _>>()?;
+    let inertia = def
+        .bodies
+        .iter()
+        .map(BodyInertia::new)
+        .collect::<Result<Vec<_>, _>>()?;
     let mut pose = vec![(Vec3::zeros(), Mat3::identity()); n];
     let mut twist = vec![(Vec3::zeros(), Vec3::zeros()); n];
     for &b in &tree.order {
         if let Some(j) = tree.tree_joint[b] {
             let jd = &def.joints[j];
-            check_rotation(&jd.parent_frame.rotation, &format!("joint '{}' parent frame", jd.name))?;
-            check_rotation(&jd.child_frame.rotation, &format!("joint '{}' child frame", jd.name))?;
+            check_rotation(
+                &jd.parent_frame.rotation,
+                &format!("joint '{}' parent frame", jd.name),
+            )?;
+            check_rotation(
+                &jd.child_frame.rotation,
+                &format!("joint '{}' child frame", jd.name),
+            )?;
             let s = joint_frame(jd)?;
             let (q, qd) = joint_initial(jd)?;
             let ((o_p, r_p), (v_p, w_p)) = match jd.parent {
                 Some(p) => (pose[p], twist[p]),
-                None => ((Vec3::zeros(), Mat3::identity()), (Vec3::zeros(), Vec3::zeros())),
+                None => (
+                    (Vec3::zeros(), Mat3::identity()),
+                    (Vec3::zeros(), Vec3::zeros()),
+                ),
             };
             // parent joint frame, then the child joint frame, then the child body frame
-            let (r_j, arm) = (r_p * jd.parent_frame.rotation, r_p * jd.parent_frame.translation);
+            let (r_j, arm) = (
+                r_p * jd.parent_frame.rotation,
+                r_p * jd.parent_frame.translation,
+            );
             let (o_j, v_j) = (o_p + arm, v_p + w_p.cross(&arm));
             let (m, tau, w_rel, tau_d) = joint_motion(jd.kind, &s, &q, &qd);
             let r_c = r_j * m;
@@ -199,12 +272,18 @@ pub fn initial_configuration(def: &ModelDef) -> Result<(Vec<f64>, Vec<f64>), Mod
             twist[b] = (v_c + w_c.cross(&(o_b - o_c)), w_c);
         } else if let Some(k) = tree.free[b] {
             let f = &def.free_bodies[k];
-            check_rotation(&f.orientation, &format!("body '{}' orientation", def.bodies[b].name))?;
+            check_rotation(
+                &f.orientation,
+                &format!("body '{}' orientation", def.bodies[b].name),
+            )?;
             // re-project through the quaternion so that the directors are orthonormal to round-off
             let r = quat_to_matrix(&crate::math::matrix_to_quat(&f.orientation));
             let vals = [f.position, f.velocity, f.angular_velocity];
             if !vals.iter().all(|v| v.iter().all(|x| x.is_finite())) {
-                return Err(ModelError::Invalid(format!("body '{}': initial state must be finite", def.bodies[b].name)));
+                return Err(ModelError::Invalid(format!(
+                    "body '{}': initial state must be finite",
+                    def.bodies[b].name
+                )));
             }
             pose[b] = (f.position, r);
             twist[b] = (f.velocity, f.angular_velocity);
@@ -218,4 +297,125 @@ pub fn initial_configuration(def: &ModelDef) -> Result<(Vec<f64>, Vec<f64>), Mod
         v0[12 * b..12 * b + 12].copy_from_slice(&v);
     }
     Ok((q0, v0))
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::mechanics::def::{BodyDef, FreeBodyInitial};
+
+    fn model(joints: &[(Option<usize>, usize, bool)], free: &[usize]) -> ModelDef {
+        let body = |k: usize| BodyDef {
+            name: format!("b{k}"),
+            mass: 1.0,
+            com: Vec3::zeros(),
+            inertia: Mat3::identity(),
+        };
+        let joint =
+            |(k, &(parent, child, loop_closing)): (usize, &(Option<usize>, usize, bool))| {
+                JointDef {
+                    name: format!("j{k}"),
+                    kind: JointType::Revolute,
+                    parent,
+                    child,
+                    parent_frame: Default::default(),
+                    child_frame: Default::default(),
+                    axis: Vec3::z(),
+                    axis2: Vec3::x(),
+                    actuated: false,
+                    damping: 0.0,
+                    stiffness: 0.0,
+                    loop_closing,
+                    initial: Default::default(),
+                }
+            };
+        let fb = |&b: &usize| FreeBodyInitial {
+            body: b,
+            position: Vec3::zeros(),
+            orientation: Mat3::identity(),
+            velocity: Vec3::zeros(),
+            angular_velocity: Vec3::zeros(),
+        };
+        ModelDef {
+            gravity: Vec3::zeros(),
+            bodies: (0..4).map(body).collect(),
+            joints: joints.iter().enumerate().map(joint).collect(),
+            loads: vec![],
+            free_bodies: free.iter().map(fb).collect(),
+        }
+    }
+
+    #[test]
+    fn parents_come_before_children() {
+        let def = model(
+            &[
+                (Some(2), 0, false),
+                (Some(3), 2, false),
+                (None, 3, false),
+                (Some(1), 0, true),
+            ],
+            &[1],
+        );
+        let t = tree_order(&def).unwrap();
+        let pos = |b: usize| t.order.iter().position(|&x| x == b).unwrap();
+        assert!(pos(3) < pos(2) && pos(2) < pos(0));
+        assert_eq!(t.order.len(), 4);
+        assert_eq!(t.loop_joints, vec![3]);
+        assert_eq!(t.tree_joint, vec![Some(0), None, Some(1), Some(2)]);
+        assert_eq!(t.free[1], Some(0));
+    }
+
+    #[test]
+    fn bad_trees_are_rejected() {
+        let no_pose = model(
+            &[(None, 0, false), (Some(0), 1, false), (None, 2, false)],
+            &[],
+        );
+        let e = tree_order(&no_pose).unwrap_err().to_string();
+        assert!(e.contains("'b3' has no pose"), "{e}");
+        let two = model(
+            &[
+                (None, 0, false),
+                (None, 1, false),
+                (Some(0), 1, false),
+                (None, 2, false),
+                (None, 3, false),
+            ],
+            &[],
+        );
+        assert!(tree_order(&two)
+            .unwrap_err()
+            .to_string()
+            .contains("two tree joints"));
+        let cycle = model(
+            &[
+                (Some(1), 0, false),
+                (Some(0), 1, false),
+                (None, 2, false),
+                (None, 3, false),
+            ],
+            &[],
+        );
+        assert!(tree_order(&cycle)
+            .unwrap_err()
+            .to_string()
+            .contains("cycle"));
+        let both = model(&[(None, 0, false)], &[0, 1, 2, 3]);
+        assert!(tree_order(&both).is_err());
+    }
+
+    #[test]
+    fn wrong_initial_lengths_are_rejected() {
+        let mut def = model(&[(None, 0, false)], &[1, 2, 3]);
+        def.joints[0].initial = JointInitial::Coords {
+            q: vec![0.1, 0.2],
+            qd: vec![],
+        };
+        assert!(initial_configuration(&def).is_err());
+        def.joints[0].initial = JointInitial::Spherical {
+            quat: [1.0, 0.0, 0.0, 0.0],
+            w: Vec3::zeros(),
+        };
+        assert!(initial_configuration(&def).is_err());
+    }
 }

@@ -28,9 +28,17 @@ pub const LOOP_TOLERANCE: f64 = 1e-6;
 /// [`ModelError::Invalid`] from [`JointGeom::new`].
 pub fn loop_residuals(def: &ModelDef, q: &[f64]) -> Result<Vec<(usize, f64)>, ModelError> {
     let mut out = Vec::new();
-    for (j, jd) in def.joints.iter().enumerate().filter(|(_, jd)| jd.loop_closing) {
+    for (j, jd) in def
+        .joints
+        .iter()
+        .enumerate()
+        .filter(|(_, jd)| jd.loop_closing)
+    {
         let g = JointGeom::new(jd, &def.bodies)?;
-        out.push((j, g.residual(&body_nodes(q, g.parent), &body_nodes(q, Some(g.child)))));
+        out.push((
+            j,
+            g.residual(&body_nodes(q, g.parent), &body_nodes(q, Some(g.child))),
+        ));
     }
     Ok(out)
 }
@@ -43,7 +51,10 @@ pub fn loop_residuals(def: &ModelDef, q: &[f64]) -> Result<Vec<(usize, f64)>, Mo
 pub fn check_loops(def: &ModelDef, q: &[f64]) -> Result<(), ModelError> {
     for (j, residual) in loop_residuals(def, q)? {
         if residual > LOOP_TOLERANCE || !residual.is_finite() {
-            return Err(ModelError::LoopNotClosed { joint: def.joints[j].name.clone(), residual });
+            return Err(ModelError::LoopNotClosed {
+                joint: def.joints[j].name.clone(),
+                residual,
+            });
         }
     }
     Ok(())
@@ -83,12 +94,20 @@ pub fn twist_jacobian(geoms: &[JointGeom], q: &[f64], nbody: usize) -> DMatrix<f
 ///
 /// # Errors
 /// [`ModelError::Invalid`] from [`JointGeom::new`] or `BodyInertia::new`.
-pub fn project_loop_velocities(def: &ModelDef, q: &[f64], v: &mut [f64]) -> Result<bool, ModelError> {
+pub fn project_loop_velocities(
+    def: &ModelDef,
+    q: &[f64],
+    v: &mut [f64],
+) -> Result<bool, ModelError> {
     if !def.joints.iter().any(|j| j.loop_closing) {
         return Ok(false);
     }
     let n = def.bodies.len();
-    let geoms = def.joints.iter().map(|j| JointGeom::new(j, &def.bodies)).collect::<Result<Vec<_>, _>>()?;
+    let geoms = def
+        .joints
+        .iter()
+        .map(|j| JointGeom::new(j, &def.bodies))
+        .collect::<Result<Vec<_>, _>>()?;
     let a = twist_jacobian(&geoms, q, n);
     let mut t0 = DVector::zeros(6 * n);
     for b in 0..n {
@@ -104,7 +123,9 @@ pub fn project_loop_velocities(def: &ModelDef, q: &[f64], v: &mut [f64]) -> Resu
     let mut loop_violation: f64 = 0.0;
     for (g, jd) in geoms.iter().zip(&def.joints) {
         if jd.loop_closing {
-            loop_violation = (i..i + g.rows.len()).map(|k| res[k].abs()).fold(loop_violation, f64::max);
+            loop_violation = (i..i + g.rows.len())
+                .map(|k| res[k].abs())
+                .fold(loop_violation, f64::max);
         }
         i += g.rows.len();
     }
@@ -117,7 +138,9 @@ pub fn project_loop_velocities(def: &ModelDef, q: &[f64], v: &mut [f64]) -> Resu
         let inertia = BodyInertia::new(body)?;
         let r = rotation(&q[12 * b..12 * b + 12]);
         let eig = (r * inertia.inertia * r.transpose()).symmetric_eigen();
-        let js = eig.eigenvectors * nalgebra::Matrix3::from_diagonal(&eig.eigenvalues.map(|x| 1.0 / x.sqrt())) * eig.eigenvectors.transpose();
+        let js = eig.eigenvectors
+            * nalgebra::Matrix3::from_diagonal(&eig.eigenvalues.map(|x| 1.0 / x.sqrt()))
+            * eig.eigenvectors.transpose();
         for c in 0..3 {
             wi[(6 * b + c, 6 * b + c)] = 1.0 / inertia.mass.sqrt();
         }
@@ -125,7 +148,9 @@ pub fn project_loop_velocities(def: &ModelDef, q: &[f64], v: &mut [f64]) -> Resu
     }
     let svd = (&a * &wi).svd(true, true);
     let eps = 1e-10 * svd.singular_values.max();
-    let y = svd.solve(&res, eps).map_err(|e| ModelError::Invalid(format!("velocity projection failed: {e}")))?;
+    let y = svd
+        .solve(&res, eps)
+        .map_err(|e| ModelError::Invalid(format!("velocity projection failed: {e}")))?;
     let t = t0 - &wi * y;
     for b in 0..n {
         let qb = &q[12 * b..12 * b + 12];
