@@ -5,7 +5,8 @@
 //! loads, the tree order used by the block elimination, the initial `q0`, `v0`).
 
 use super::constraint::{DotRow, LinVec};
-use super::def::{JointType, ModelDef, SolverSettings};
+use super::def::{ModelDef, SolverSettings};
+use super::joint::JointGeom;
 use super::error::ModelError;
 use crate::math::{Mat3, Vec3};
 
@@ -85,12 +86,10 @@ pub(crate) struct JointRt {
     pub sph_axes: Option<[LinVec; 3]>,
     /// Index in the input vector of the first actuator input, if actuated.
     pub input: Option<usize>,
-    /// Tree joint (false: loop-closing).
-    pub tree: bool,
     /// Offset of this joint's turn dofs in the unwrapping memory.
     pub turn0: usize,
-    /// Pair type.
-    pub kind: JointType,
+    /// The joint's geometry (coordinates and rates for outputs and unwrapping).
+    pub geom: JointGeom,
 }
 
 /// A built, immutable multibody model.

@@ -19,7 +19,7 @@ use super::assemble::{read3, write3};
 use super::constraint::{nodes, DotRow, Nodes};
 use super::model::{DofRt, Model};
 use super::solver::{lu_factor, lu_solve, solve_tree, Block, NMAX};
-use crate::math::{exp_so3, skew, Mat3, Vec3};
+use crate::math::{skew, Mat3, Vec3};
 
 /// Preallocated Newton workspace (all sized at `State::new`).
 #[derive(Clone, Debug)]
@@ -36,6 +36,9 @@ pub(crate) struct Work {
     pub work: f64,
     /// Newton iterate.
     pub q: Vec<f64>,
+    /// Increment `q − qₙ`, kept separately so that velocities do not suffer the cancellation
+    /// of large positions.
+    pub dq: Vec<f64>,
     /// Midpoint `½(qₙ + q)`.
     pub qbar: Vec<f64>,
     /// Node residual `R̃` (12 per body).
@@ -78,6 +81,7 @@ impl Work {
             ang: model.angles0.clone(),
             work: 0.0,
             q: model.q0.clone(),
+            dq: vec![0.0; 12 * nb],
             qbar: model.q0.clone(),
             rn: vec![0.0; 12 * nb],
             mu: vec![0.0; nr],
@@ -306,7 +310,7 @@ pub(crate) fn evaluate(
     let g = model.def().gravity;
     let mut work = 0.0;
     for k in 0..ws.q.len() {
-        ws.qbar[k] = 0.5 * (ws.qn[k] + ws.q[k]);
+        ws.qbar[k] = ws.qn[k] + 0.5 * ws.dq[k];
     }
     if jac {
         if model.dense {
@@ -324,9 +328,10 @@ pub(crate) fn evaluate(
         let qn = body_nodes(&ws.qn, b);
         let q = body_nodes(&ws.q, b);
         let vn = body_nodes(&ws.vn, b);
+        let inc = body_nodes(&ws.dq, b);
         let mut dq = [Vec3::zeros(); 4];
         for k in 0..4 {
-            dq[k] = q[k] - qn[k] - vn[k] * h;
+            dq[k] = inc[k] - vn[k] * h;
         }
         let mut r = [Vec3::zeros(); 4];
         r[0] = dq[0] * br.mass - g * (hh * br.mass);
@@ -353,7 +358,7 @@ pub(crate) fn evaluate(
         let f = Vec3::new(held.inputs[at], held.inputs[at + 1], held.inputs[at + 2]);
         let r = read3(&ws.rn, 12 * b) - f * hh;
         write3(&mut ws.rn, 12 * b, &r);
-        work += f.dot(&(read3(&ws.q, 12 * b) - read3(&ws.qn, 12 * b)));
+        work += f.dot(&read3(&ws.dq, 12 * b));
     }
     // joint rows: μ ∇g(q̄) into R̃, g(q) residual, Jacobian columns/rows and node couplings
     let mut res = 0.0_f64;
@@ -486,7 +491,7 @@ pub(crate) fn evaluate(
                         let delta = nbar.dot(&(th_b - th_a));
                         let raw = super::assemble::turn_angle(model, j, dk, &qa, &qb);
                         let t0 = ws.ang[turn];
-                        let t1 = unwrap(t0, raw);
+                        let t1 = super::assemble::unwrap(t0, raw);
                         ws.ang1[turn] = t1;
                         let spring = if delta.abs() > 1e-13 * (1.0 + t0.abs() + t1.abs()) {
                             -0.5 * k_s * (t1 * t1 - t0 * t0) / delta
@@ -742,12 +747,20 @@ fn nn_terms(
     }
 }
 
-/// The unwrapped angle nearest to `prev` with the same value as `raw` modulo 2π.
+/// `exp(θ̂) − I = s θ̂ + c θ̂²` without the cancellation of subtracting `I`
+/// (`c = 2 sin²(|θ|/2)/|θ|²`), so that director increments stay accurate to round-off.
 #[must_use]
-pub(crate) fn unwrap(prev: f64, raw: f64) -> f64 {
-    let tau = std::f64::consts::TAU;
-    let d = raw - prev;
-    prev + d - tau * (d / tau).round()
+pub(crate) fn expm1_so3(theta: &Vec3) -> Mat3 {
+    let a2 = theta.norm_squared();
+    let k = skew(theta);
+    let (s, c) = if a2 < 1e-8 {
+        (1.0 - a2 / 6.0 * (1.0 - a2 / 20.0), 0.5 - a2 / 24.0 * (1.0 - a2 / 30.0))
+    } else {
+        let a = a2.sqrt();
+        let sh = (0.5 * a).sin();
+        (a.sin() / a, 2.0 * sh * sh / a2)
+    };
+    k * s + k * k * c
 }
 
 /// Solves the assembled linear system; the solution replaces the right-hand side.
@@ -777,12 +790,15 @@ pub(crate) fn update(model: &Model, ws: &mut Work) -> f64 {
         let dphi = Vec3::new(x[0], x[1], x[2]);
         let dth = Vec3::new(x[3], x[4], x[5]);
         upd = upd.max(dphi.norm() / model.lc).max(dth.norm());
-        let phi = read3(&ws.q, 12 * b) + dphi;
-        write3(&mut ws.q, 12 * b, &phi);
-        let rot = exp_so3(&dth);
+        let inc = read3(&ws.dq, 12 * b) + dphi;
+        write3(&mut ws.dq, 12 * b, &inc);
+        write3(&mut ws.q, 12 * b, &(read3(&ws.qn, 12 * b) + inc));
+        let em1 = expm1_so3(&dth);
         for i in 0..3 {
-            let d = rot * read3(&ws.q, 12 * b + 3 + 3 * i);
-            write3(&mut ws.q, 12 * b + 3 + 3 * i, &d);
+            let o = 12 * b + 3 + 3 * i;
+            let inc = read3(&ws.dq, o) + em1 * read3(&ws.q, o);
+            write3(&mut ws.dq, o, &inc);
+            write3(&mut ws.q, o, &(read3(&ws.qn, o) + inc));
         }
     }
     for jt in &model.joints {

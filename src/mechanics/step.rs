@@ -9,9 +9,8 @@
 use super::assemble::{read3, write3};
 use super::error::StepError;
 use super::model::Model;
-use super::newton::{evaluate, solve, update, Held, Work};
+use super::newton::{evaluate, expm1_so3, solve, update, Held, Work};
 use super::state::State;
-use crate::math::exp_so3;
 
 /// Statistics of one step.
 #[derive(Clone, Copy, Debug, Default, PartialEq)]
@@ -88,16 +87,19 @@ fn stage(model: &Model, ws: &mut Work, held: &Held, h: f64) -> Result<StepStats,
     // predictor
     for b in 0..nb {
         let o = 12 * b;
-        let phi = read3(&ws.qn, o) + read3(&ws.vn, o) * h;
-        write3(&mut ws.q, o, &phi);
+        let inc = read3(&ws.vn, o) * h;
+        write3(&mut ws.dq, o, &inc);
+        write3(&mut ws.q, o, &(read3(&ws.qn, o) + inc));
         let mut w = crate::math::Vec3::zeros();
         for i in 0..3 {
             w += read3(&ws.qn, o + 3 + 3 * i).cross(&read3(&ws.vn, o + 3 + 3 * i));
         }
-        let rot = exp_so3(&(w * (0.5 * h)));
+        let em1 = expm1_so3(&(w * (0.5 * h)));
         for i in 0..3 {
-            let d = rot * read3(&ws.qn, o + 3 + 3 * i);
-            write3(&mut ws.q, o + 3 + 3 * i, &d);
+            let dn = read3(&ws.qn, o + 3 + 3 * i);
+            let inc = em1 * dn;
+            write3(&mut ws.dq, o + 3 + 3 * i, &inc);
+            write3(&mut ws.q, o + 3 + 3 * i, &(dn + inc));
         }
     }
     for k in 0..ws.mu.len() {
@@ -137,7 +139,7 @@ fn stage(model: &Model, ws: &mut Work, held: &Held, h: f64) -> Result<StepStats,
     }
     let s = 2.0 / h;
     for k in 0..ws.q.len() {
-        let v = s * (ws.q[k] - ws.qn[k]) - ws.vn[k];
+        let v = s * ws.dq[k] - ws.vn[k];
         ws.vn[k] = v;
         ws.qn[k] = ws.q[k];
     }
