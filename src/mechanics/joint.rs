@@ -128,12 +128,29 @@ pub fn joint_frame(def: &JointDef) -> Result<Mat3, ModelError> {
     }
 }
 
+/// Checks that a frame rotation is finite, orthonormal and right-handed (to 1e-9).
+///
+/// # Errors
+/// [`ModelError::Invalid`] naming `what` otherwise.
+pub fn check_rotation(r: &Mat3, what: &str) -> Result<(), ModelError> {
+    if r.iter().all(|x| x.is_finite())
+        && (r.transpose() * r - Mat3::identity()).amax() < 1e-9
+        && r.determinant() > 0.0
+    {
+        Ok(())
+    } else {
+        Err(ModelError::Invalid(format!(
+            "{what}: rotation is not orthonormal and right-handed"
+        )))
+    }
+}
+
 impl JointGeom {
     /// Builds the rows and dof handles of `def` over `bodies`.
     ///
     /// # Errors
-    /// [`ModelError::Invalid`] for body indices out of range, parent = child, or a degenerate
-    /// axis (see [`joint_frame`]).
+    /// [`ModelError::Invalid`] for body indices out of range, parent = child, a frame that is
+    /// not a rigid placement, or a degenerate axis (see [`joint_frame`]).
     pub fn new(def: &JointDef, bodies: &[BodyDef]) -> Result<Self, ModelError> {
         let bad = |what: &str| ModelError::Invalid(format!("joint '{}': {what}", def.name));
         let child = bodies
@@ -141,6 +158,15 @@ impl JointGeom {
             .ok_or_else(|| bad("child body index out of range"))?;
         if def.parent == Some(def.child) {
             return Err(bad("parent and child are the same body"));
+        }
+        for (frame, side) in [(&def.parent_frame, "parent"), (&def.child_frame, "child")] {
+            check_rotation(
+                &frame.rotation,
+                &format!("joint '{}' {side} frame", def.name),
+            )?;
+            if !frame.translation.iter().all(|x| x.is_finite()) {
+                return Err(bad(&format!("{side} frame translation must be finite")));
+            }
         }
         let s = joint_frame(def)?;
         let ca = def.parent_frame.rotation * s;
@@ -349,5 +375,16 @@ mod tests {
         def.kind = JointType::Revolute;
         def.axis = Vec3::zeros();
         assert!(joint_frame(&def).is_err());
+        def.axis = Vec3::z();
+        let body = BodyDef {
+            name: "b".into(),
+            mass: 1.0,
+            com: Vec3::zeros(),
+            inertia: Mat3::identity(),
+        };
+        assert!(JointGeom::new(&def, std::slice::from_ref(&body)).is_ok());
+        def.parent_frame.rotation[(0, 1)] = 0.1;
+        let e = JointGeom::new(&def, &[body]).unwrap_err().to_string();
+        assert!(e.contains("parent frame"), "{e}");
     }
 }

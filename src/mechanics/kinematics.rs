@@ -12,7 +12,7 @@
 use super::body::BodyInertia;
 use super::def::{JointDef, JointInitial, JointType, ModelDef};
 use super::error::ModelError;
-use super::joint::joint_frame;
+use super::joint::{check_rotation, joint_frame};
 use crate::math::{exp_so3, quat_to_matrix, Mat3, Vec3};
 
 /// The spanning tree of a model.
@@ -202,20 +202,6 @@ pub fn joint_motion(kind: JointType, s: &Mat3, q: &[f64], qd: &[f64]) -> (Mat3, 
             (m, z, w, z)
         }
         JointType::Fixed => (Mat3::identity(), z, z, z),
-    }
-}
-
-/// Checks that a frame rotation is orthonormal and right-handed (to 1e-9).
-fn check_rotation(r: &Mat3, what: &str) -> Result<(), ModelError> {
-    if r.iter().all(|x| x.is_finite())
-        && (r.transpose() * r - Mat3::identity()).amax() < 1e-9
-        && r.determinant() > 0.0
-    {
-        Ok(())
-    } else {
-        Err(ModelError::Invalid(format!(
-            "{what}: rotation is not orthonormal and right-handed"
-        )))
     }
 }
 
