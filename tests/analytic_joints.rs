@@ -2,12 +2,12 @@
 //!
 //! * B4 rotor spin-up: ground revolute at the centre of mass, `τ = τ₀ sin²(πt/T_s)` on
 //!   `[0, T_s]` sampled at step midpoints; final rate `ω_f = τ₀T_s/(2J) = 5.940594` rad/s exactly
-//!   (consistent torque), and `J θ̇ = ∫τ dt` at every node;
+//!   (consistent torque), and `J θ̇ = ∫τ dt` at every node (order 2 and 4);
 //! * B6 physical pendulum: `T = 4√(J_O/(m g l_c)) K(sin²(α₀/2))` = 1.638499 s (α₀ = 0.02) and
 //!   2.177355 s (α₀ = 2), period from zero crossings, EM errors ≈ 8.0e-4/1.48e-3 s (h = 0.02) and
 //!   2.0e-4/3.7e-4 s (h = 0.01), second order; energy constant;
 //! * B8 free-floating revolute motor and prismatic actuator: total `p` and `L` constant,
-//!   `E − W` constant (W = work of the inputs);
+//!   `E − W` constant (W = work of the inputs), order 2 and 4;
 //! * a Grashof crank-rocker four-bar (one loop-closing revolute, parallel axes, gravity in the
 //!   plane) for 10 s: energy constant to 1e-10 relative, constraints below 1e-10.
 
@@ -25,10 +25,10 @@ fn tol(x: f64) -> f64 {
     x * s.unwrap_or(1.0)
 }
 
-fn settings(h: f64) -> SolverSettings {
+fn settings(h: f64, order: u8) -> SolverSettings {
     SolverSettings {
         max_step: h,
-        order: 2,
+        order,
         tolerance: 1e-12,
         max_iterations: 30,
     }
@@ -85,8 +85,8 @@ fn model(bodies: Vec<BodyDef>, joints: Vec<JointDef>, gravity: Vec3) -> ModelDef
     }
 }
 
-fn build(def: &ModelDef, h: f64) -> (Model, State) {
-    let m = Model::new(def, settings(h)).unwrap();
+fn build(def: &ModelDef, h: f64, order: u8) -> (Model, State) {
+    let m = Model::new(def, settings(h, order)).unwrap();
     let s = State::new(&m);
     (m, s)
 }
@@ -98,7 +98,7 @@ fn b4_rotor_spin_up_reaches_exact_rate() {
     let (tau0, ts) = (10.0, 2.0);
     let exact = tau0 * ts / (2.0 * j[(2, 2)]);
     assert!((exact - 5.940594).abs() < 1e-6);
-    for h in [0.05, 0.025] {
+    for (h, order) in [(0.05, 2), (0.025, 2), (0.05, 4)] {
         let mut jd = joint(JointType::Revolute, None, 0, Vec3::zeros(), vec![], vec![]);
         jd.actuated = true;
         let def = model(
@@ -106,7 +106,7 @@ fn b4_rotor_spin_up_reaches_exact_rate() {
             vec![jd],
             Vec3::zeros(),
         );
-        let (m, mut s) = build(&def, h);
+        let (m, mut s) = build(&def, h, order);
         let n = (4.0 / h).round() as usize;
         let mut impulse = 0.0;
         for k in 0..n {
@@ -128,7 +128,7 @@ fn b4_rotor_spin_up_reaches_exact_rate() {
         }
         let rate = s.outputs().joints[0].qd[0];
         eprintln!(
-            "B4 h={h}: final rate {rate:.15} (exact {exact:.15}), rel error {:e}",
+            "B4 h={h} order {order}: final rate {rate:.15} (exact {exact:.15}), rel error {:e}",
             rate / exact - 1.0
         );
         assert!((rate / exact - 1.0).abs() < tol(1e-12));
@@ -154,7 +154,7 @@ fn pendulum_period(alpha0: f64, h: f64) -> (f64, f64) {
     // q = 0 hangs straight down (bar along −e2)
     jd.parent_frame.rotation = exp_so3(&(Vec3::z() * -std::f64::consts::FRAC_PI_2));
     let def = model(vec![bar], vec![jd], Vec3::new(0.0, -9.81, 0.0));
-    let (m, mut s) = build(&def, h);
+    let (m, mut s) = build(&def, h, 2);
     let e0 = s.outputs().energy;
     let (mut crossings, mut prev, mut drift) = (Vec::new(), alpha0, 0.0_f64);
     while crossings.len() < 3 {
@@ -241,9 +241,9 @@ fn b8_free_floating_actuators_conserve_momenta() {
             2.0,
         ),
     ];
-    for (kind, q, rates, amp, freq) in cases {
+    for ((kind, q, rates, amp, freq), order) in cases.into_iter().flat_map(|c| [(c, 2), (c, 4)]) {
         let h = 0.02;
-        let (m, mut s) = build(&b8_model(kind, q, rates), h);
+        let (m, mut s) = build(&b8_model(kind, q, rates), h, order);
         let (p0, l0) = (s.outputs().p, s.outputs().l);
         let b0 = s.outputs().energy - s.outputs().work;
         let (mut dp, mut dl, mut db) = (0.0_f64, 0.0_f64, 0.0_f64);
@@ -256,7 +256,7 @@ fn b8_free_floating_actuators_conserve_momenta() {
             db = db.max((o.energy - o.work - b0).abs());
         }
         eprintln!(
-            "B8 {kind:?}: |Δp| {dp:.1e}, |ΔL| {dl:.1e} (|L| {:.3}), |Δ(E−W)| {db:.1e}",
+            "B8 {kind:?} order {order}: |Δp| {dp:.1e}, |ΔL| {dl:.1e} (|L| {:.3}), |Δ(E−W)| {db:.1e}",
             l0.norm()
         );
         assert!(
@@ -333,7 +333,7 @@ fn four_bar(theta1: f64, crank_rate: f64) -> ModelDef {
 #[test]
 fn four_bar_keeps_energy_and_constraints() {
     let h = 0.005;
-    let (m, mut s) = build(&four_bar(1.0, 3.0), h);
+    let (m, mut s) = build(&four_bar(1.0, 3.0), h, 2);
     eprintln!("four-bar notes: {:?}", m.notes());
     let e0 = s.outputs().energy;
     let (mut de, mut cr) = (0.0_f64, s.outputs().constraint_residual);
