@@ -33,15 +33,35 @@ fn kinetic_scale(s: &triad::mechanics::State) -> f64 {
 
 fn free_body_def() -> ModelDef {
     let j = box_inertia(10.0, 1.0, 0.6, 0.3);
-    free_body(10.0, j, rot([0.3, -0.5, 0.2]), rot([0.3, -0.5, 0.2]) * Vec3::new(0.2, 3.0, 0.3), Vec3::new(0.1, 0.0, -0.2), false, false)
+    free_body(
+        10.0,
+        j,
+        rot([0.3, -0.5, 0.2]),
+        rot([0.3, -0.5, 0.2]) * Vec3::new(0.2, 3.0, 0.3),
+        Vec3::new(0.1, 0.0, -0.2),
+        false,
+        false,
+    )
 }
 
 #[test]
 fn free_body_order2_and_order4() {
     for order in [2, 4] {
-        let (de, dl, res, it) = drift(&free_body_def(), 0.05, order, 10_000, Vec3::new(1.0, 1.0, 1.0));
-        eprintln!("free body order {order}: dE {de:e} dL {dl:e} res {res:e} it/step {}", it as f64 / 1e4);
-        assert!(de < tol(1e-12) && dl < tol(1e-12), "order {order}: {de:e} {dl:e}");
+        let (de, dl, res, it) = drift(
+            &free_body_def(),
+            0.05,
+            order,
+            10_000,
+            Vec3::new(1.0, 1.0, 1.0),
+        );
+        eprintln!(
+            "free body order {order}: dE {de:e} dL {dl:e} res {res:e} it/step {}",
+            it as f64 / 1e4
+        );
+        assert!(
+            de < tol(1e-12) && dl < tol(1e-12),
+            "order {order}: {de:e} {dl:e}"
+        );
     }
 }
 
@@ -49,7 +69,10 @@ fn free_body_order2_and_order4() {
 fn double_pendulum_order2_and_order4() {
     for order in [2, 4] {
         let (de, _, res, it) = drift(&double_pendulum(), 0.01, order, 10_000, Vec3::zeros());
-        eprintln!("double pendulum order {order}: dE {de:e} res {res:e} it/step {}", it as f64 / 1e4);
+        eprintln!(
+            "double pendulum order {order}: dE {de:e} res {res:e} it/step {}",
+            it as f64 / 1e4
+        );
         assert!(de < tol(1e-12), "order {order}: {de:e}");
         assert!(res < tol(1e-10), "constraint residual {res:e}");
     }
@@ -59,8 +82,14 @@ fn double_pendulum_order2_and_order4() {
 fn heavy_top_order2_and_order4() {
     for order in [2, 4] {
         let (de, dl, res, it) = drift(&heavy_top(), 0.01, order, 10_000, Vec3::z());
-        eprintln!("heavy top order {order}: dE {de:e} dLz {dl:e} res {res:e} it/step {}", it as f64 / 1e4);
-        assert!(de < tol(1e-12) && dl < tol(1e-12), "order {order}: {de:e} {dl:e}");
+        eprintln!(
+            "heavy top order {order}: dE {de:e} dLz {dl:e} res {res:e} it/step {}",
+            it as f64 / 1e4
+        );
+        assert!(
+            de < tol(1e-12) && dl < tol(1e-12),
+            "order {order}: {de:e} {dl:e}"
+        );
         assert!(res < tol(1e-10), "constraint residual {res:e}");
     }
 }
@@ -69,7 +98,10 @@ fn heavy_top_order2_and_order4() {
 fn chain10_order2_and_order4() {
     for order in [2, 4] {
         let (de, _, res, it) = drift(&chain(10), 0.01, order, 10_000, Vec3::zeros());
-        eprintln!("chain10 order {order}: dE {de:e} res {res:e} it/step {}", it as f64 / 1e4);
+        eprintln!(
+            "chain10 order {order}: dE {de:e} res {res:e} it/step {}",
+            it as f64 / 1e4
+        );
         assert!(de < tol(1e-12), "order {order}: {de:e}");
         assert!(res < tol(1e-10), "constraint residual {res:e}");
     }

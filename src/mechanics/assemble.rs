@@ -83,7 +83,11 @@ pub(crate) fn build(model: &mut Model, joint_input: &[Option<usize>]) -> Result<
         let qb = super::joint::body_nodes(&model.q0, Some(g.child));
         let mut raw = [0.0; 4];
         g.coords(&qa, &qb, &mut raw[..jd.kind.nq()]);
-        let given = if jd.loop_closing { None } else { super::kinematics::joint_initial(jd).ok().map(|x| x.0) };
+        let given = if jd.loop_closing {
+            None
+        } else {
+            super::kinematics::joint_initial(jd).ok().map(|x| x.0)
+        };
         for (k, d) in dofs.iter().enumerate() {
             if let DofRt::Turn(_) = d {
                 let a = given.as_ref().map_or(raw[k], |q| unwrap(q[k], raw[k]));
@@ -114,7 +118,9 @@ pub(crate) fn build(model: &mut Model, joint_input: &[Option<usize>]) -> Result<
     for (b, tj) in model.tree_joint.iter().enumerate() {
         if let Some(j) = tj {
             if model.joints[*j].rows.len() > 6 {
-                return Err(ModelError::Invalid(format!("body {b}: tree joint with more than 6 rows")));
+                return Err(ModelError::Invalid(format!(
+                    "body {b}: tree joint with more than 6 rows"
+                )));
             }
         }
     }
@@ -141,7 +147,9 @@ fn redundant_rows(model: &Model, geoms: &[JointGeom]) -> Vec<Vec<bool>> {
         let a = super::loops::twist_jacobian(std::slice::from_ref(g), &model.q0, nb);
         for k in 0..g.rows.len() {
             // columns scaled to (m/s·lc⁻¹, rad/s) so that lengths and angles weigh alike
-            let mut r: Vec<f64> = (0..6 * nb).map(|c| a[(k, c)] * if c % 6 < 3 { lc } else { 1.0 }).collect();
+            let mut r: Vec<f64> = (0..6 * nb)
+                .map(|c| a[(k, c)] * if c % 6 < 3 { lc } else { 1.0 })
+                .collect();
             let n0 = r.iter().map(|x| x * x).sum::<f64>().sqrt();
             for _ in 0..2 {
                 for e in &basis {
@@ -165,9 +173,12 @@ fn redundant_rows(model: &Model, geoms: &[JointGeom]) -> Vec<Vec<bool>> {
 fn free_initial(model: &mut Model) -> Result<(), ModelError> {
     let def = model.def().clone();
     for fb in &def.free_bodies {
-        let ok = [fb.position, fb.velocity, fb.angular_velocity].iter().all(|v| v.iter().all(|x| x.is_finite()))
+        let ok = [fb.position, fb.velocity, fb.angular_velocity]
+            .iter()
+            .all(|v| v.iter().all(|x| x.is_finite()))
             && fb.orientation.iter().all(|x| x.is_finite())
-            && (fb.orientation.transpose() * fb.orientation - crate::math::Mat3::identity()).amax() < 1e-9
+            && (fb.orientation.transpose() * fb.orientation - crate::math::Mat3::identity()).amax()
+                < 1e-9
             && fb.orientation.determinant() > 0.0;
         if !ok {
             return Err(ModelError::Invalid(format!(
@@ -226,7 +237,17 @@ pub(crate) fn turn_angle(model: &Model, j: usize, dk: usize, qa: &Nodes, qb: &No
 /// Joint coordinates and rates at the nodes; turn coordinates take the unwrapped `angles`
 /// (this joint's turn dofs first).
 #[allow(clippy::too_many_arguments)]
-pub(crate) fn joint_outputs(model: &Model, j: usize, qa: &Nodes, qb: &Nodes, va: &Nodes, vb: &Nodes, angles: &[f64], q: &mut [f64], qd: &mut [f64]) {
+pub(crate) fn joint_outputs(
+    model: &Model,
+    j: usize,
+    qa: &Nodes,
+    qb: &Nodes,
+    va: &Nodes,
+    vb: &Nodes,
+    angles: &[f64],
+    q: &mut [f64],
+    qd: &mut [f64],
+) {
     let jt = &model.joints[j];
     let world = super::joint::world_nodes();
     let qa = if jt.parent.is_some() { qa } else { &world };

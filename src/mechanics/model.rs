@@ -6,8 +6,8 @@
 
 use super::constraint::{DotRow, LinVec};
 use super::def::{ModelDef, SolverSettings};
-use super::joint::JointGeom;
 use super::error::ModelError;
+use super::joint::JointGeom;
 use crate::math::{Mat3, Vec3};
 
 /// One scalar input of the model, in the order of `State::inputs`.

@@ -14,6 +14,8 @@ pub struct State {
     pub(crate) q: Vec<f64>,
     /// Velocities (12 per body), world frame, m/s and 1/s.
     pub(crate) v: Vec<f64>,
+    /// Low part of the velocities (double-double with `v`), 12 per body.
+    pub(crate) v_lo: Vec<f64>,
     /// Multiplier memory `λ/2` per active joint row (Newton warm start).
     pub(crate) lam: Vec<f64>,
     /// Unwrapped turn angles (one per rotational joint coordinate), rad.
@@ -37,6 +39,7 @@ impl State {
             t: 0.0,
             q: model.q0.clone(),
             v: model.v0.clone(),
+            v_lo: vec![0.0; model.v0.len()],
             lam: vec![0.0; model.nrows],
             angles: model.angles0.clone(),
             work: 0.0,
@@ -127,13 +130,14 @@ impl State {
 
     /// Every number that determines the future of this state (time, q, v, multipliers used as
     /// the Newton start, inputs, tunable parameters, accumulated work, unwrapping memory), flat:
-    /// `[t, q.., v.., λ/2.., angles.., work, inputs.., damping.., stiffness..]`.
+    /// `[t, q.., v.., v_lo.., λ/2.., angles.., work, inputs.., damping.., stiffness..]`.
     #[must_use]
     pub fn snapshot(&self) -> Vec<f64> {
         let mut out = Vec::with_capacity(self.snapshot_len());
         out.push(self.t);
         out.extend_from_slice(&self.q);
         out.extend_from_slice(&self.v);
+        out.extend_from_slice(&self.v_lo);
         out.extend_from_slice(&self.lam);
         out.extend_from_slice(&self.angles);
         out.push(self.work);
@@ -145,7 +149,7 @@ impl State {
 
     fn snapshot_len(&self) -> usize {
         2 + self.q.len()
-            + self.v.len()
+            + 2 * self.v.len()
             + self.lam.len()
             + self.angles.len()
             + self.inputs.len()
@@ -174,6 +178,7 @@ impl State {
         take(&mut t);
         take(&mut self.q);
         take(&mut self.v);
+        take(&mut self.v_lo);
         take(&mut self.lam);
         take(&mut self.angles);
         let mut w = [0.0];

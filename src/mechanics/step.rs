@@ -50,6 +50,7 @@ pub fn step(model: &Model, state: &mut State, h: f64) -> Result<StepStats, StepE
     let ws = &mut state.ws;
     ws.qn.copy_from_slice(&state.q);
     ws.vn.copy_from_slice(&state.v);
+    ws.vlo.copy_from_slice(&state.v_lo);
     ws.lam.copy_from_slice(&state.lam);
     ws.ang.copy_from_slice(&state.angles);
     ws.work = state.work;
@@ -66,19 +67,50 @@ pub fn step(model: &Model, state: &mut State, h: f64) -> Result<StepStats, StepE
         &[1.0]
     };
     for &g in stages {
-        let s = stage(model, ws, &held, g * h)?;
-        stats.iterations += s.iterations;
-        stats.residual = s.residual;
+        robust_stage(model, ws, &held, g * h, 0, &mut stats)?;
     }
     // commit
     state.q.copy_from_slice(&ws.qn);
     state.v.copy_from_slice(&ws.vn);
+    state.v_lo.copy_from_slice(&ws.vlo);
     state.lam.copy_from_slice(&ws.lam);
     state.angles.copy_from_slice(&ws.ang);
     state.work = ws.work;
     state.t += h;
     state.refresh_outputs(model);
     Ok(stats)
+}
+
+/// Deepest halving of a stage whose Newton iteration failed.
+const MAX_HALVINGS: usize = 3;
+
+/// A stage of size `h`; if Newton fails (no convergence or a singular matrix), the stage is
+/// redone as two EM stages of `h/2` (at most [`MAX_HALVINGS`] deep). Every sub-stage is itself
+/// an EM step, so energy, momentum and the torque balance stay exact; only the local accuracy
+/// of that step changes.
+fn robust_stage(
+    model: &Model,
+    ws: &mut Work,
+    held: &Held,
+    h: f64,
+    depth: usize,
+    stats: &mut StepStats,
+) -> Result<(), StepError> {
+    match stage(model, ws, held, h) {
+        Ok(s) => {
+            stats.iterations += s.iterations;
+            stats.residual = s.residual;
+            Ok(())
+        }
+        Err(e @ (StepError::NoConvergence { .. } | StepError::Singular))
+            if depth < MAX_HALVINGS && model.settings().max_iterations > 1 =>
+        {
+            let _ = e;
+            robust_stage(model, ws, held, 0.5 * h, depth + 1, stats)?;
+            robust_stage(model, ws, held, 0.5 * h, depth + 1, stats)
+        }
+        Err(e) => Err(e),
+    }
 }
 
 /// One EM stage of size `h` (may be negative inside the composition) on the workspace.
@@ -137,10 +169,12 @@ fn stage(model: &Model, ws: &mut Work, held: &Held, h: f64) -> Result<StepStats,
     if !n.res.is_finite() {
         return Err(StepError::NonFinite("state"));
     }
-    let s = 2.0 / h;
+    // v_{n+1} = vₙ + 2a/h in double-double (two-sum), a from the final evaluation
     for k in 0..ws.q.len() {
-        let v = s * ws.dq[k] - ws.vn[k];
-        ws.vn[k] = v;
+        let c = ws.vlo[k] + 2.0 * ws.acc[k] / h;
+        let (hi, lo) = two_sum(ws.vn[k], c);
+        ws.vn[k] = hi;
+        ws.vlo[k] = lo;
         ws.qn[k] = ws.q[k];
     }
     let ih2 = 1.0 / (h * h);
@@ -153,4 +187,12 @@ fn stage(model: &Model, ws: &mut Work, held: &Held, h: f64) -> Result<StepStats,
         iterations: it,
         residual: n.res,
     })
+}
+
+/// Error-free sum: `a + b = s + e` exactly.
+#[inline]
+fn two_sum(a: f64, b: f64) -> (f64, f64) {
+    let s = a + b;
+    let bb = s - a;
+    (s, (a - (s - bb)) + (b - bb))
 }
