@@ -71,8 +71,12 @@ impl Model {
                     inputs.push(InputSlot::JointForce { joint: j });
                     inputs.push(InputSlot::JointTorque { joint: j, k: 0 });
                 }
-                T::Universal => (0..2).for_each(|k| inputs.push(InputSlot::JointTorque { joint: j, k })),
-                T::Spherical => (0..3).for_each(|k| inputs.push(InputSlot::JointTorque { joint: j, k })),
+                T::Universal => {
+                    (0..2).for_each(|k| inputs.push(InputSlot::JointTorque { joint: j, k }))
+                }
+                T::Spherical => {
+                    (0..3).for_each(|k| inputs.push(InputSlot::JointTorque { joint: j, k }))
+                }
                 T::Planar | T::Fixed => {}
             }
         }
@@ -84,7 +88,12 @@ impl Model {
                 (0..3).for_each(|i| inputs.push(InputSlot::BodyForce { body: load.body, i }));
             }
         }
-        Ok(Self { def: def.clone(), settings, inputs, notes: Vec::new() })
+        Ok(Self {
+            def: def.clone(),
+            settings,
+            inputs,
+            notes: Vec::new(),
+        })
     }
 
     /// The definition this model was built from.

@@ -96,7 +96,10 @@ impl State {
     /// A message if the length does not match the model.
     pub fn restore(&mut self, model: &Model, data: &[f64]) -> Result<(), String> {
         if data.len() != 1 + model.inputs().len() {
-            return Err(format!("snapshot length {} does not match the model", data.len()));
+            return Err(format!(
+                "snapshot length {} does not match the model",
+                data.len()
+            ));
         }
         self.t = data[0];
         self.inputs.copy_from_slice(&data[1..]);
