@@ -1,0 +1,26 @@
+#!/usr/bin/env bash
+# Installs what triad needs on a fresh Debian machine: system libraries for the plotting
+# (fontconfig + a font), the Rust build, and the Python venv (.venv) used by the FMU tests,
+# the examples and the main job. Idempotent: steps already done are skipped.
+set -euo pipefail
+cd "$(dirname "$0")/.."
+
+need_apt=()
+for pkg in libfontconfig1-dev fonts-dejavu-core pkg-config; do
+  dpkg -s "$pkg" >/dev/null 2>&1 || need_apt+=("$pkg")
+done
+if [ ${#need_apt[@]} -gt 0 ]; then
+  echo "setup: installing ${need_apt[*]}"
+  if [ "$(id -u)" = 0 ]; then SUDO=""; else SUDO="sudo"; fi
+  $SUDO apt-get update -qq
+  DEBIAN_FRONTEND=noninteractive $SUDO apt-get install -y -qq "${need_apt[@]}" >/dev/null
+fi
+
+if [ ! -x .venv/bin/python ] || ! .venv/bin/python -c "import fmpy" >/dev/null 2>&1 \
+   || ! cmp -s tests/python/requirements.txt .venv/.requirements 2>/dev/null; then
+  echo "setup: creating .venv"
+  python3 -m venv .venv
+  .venv/bin/pip install -q --upgrade pip
+  .venv/bin/pip install -q -r tests/python/requirements.txt
+  cp tests/python/requirements.txt .venv/.requirements
+fi
