@@ -250,7 +250,10 @@ pub(super) fn parse(text: &str, format: Format, origin: &str) -> Result<Spec, Sp
                 SpecErrors::single(
                     origin,
                     path,
-                    format!("TOML syntax error: {}", e.message().trim()),
+                    format!(
+                        "TOML syntax error: {}",
+                        e.message().trim().replace('\n', "; ")
+                    ),
                 )
             })?;
             check_table(Node::Toml(&value), "", TOP, &mut report);

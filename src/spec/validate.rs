@@ -168,13 +168,22 @@ fn inertia(report: &mut Report, path: &str, b: &super::BodySpec) {
         report.push(
             path,
             format!(
-                "is not positive definite (principal moments {:.6e}, {:.6e}, {:.6e})",
-                e[0], e[1], e[2]
+                "is not positive definite (principal moments {}, {}, {})",
+                sig(e[0]),
+                sig(e[1]),
+                sig(e[2])
             ),
         );
     } else if e[0] + e[1] < e[2] * (1.0 - 1e-12) {
-        report.push(path, format!("violates the triangle inequality: principal moments {:.6e} + {:.6e} < {:.6e}, which no mass distribution has", e[0], e[1], e[2]));
+        report.push(path, format!("violates the triangle inequality: principal moments {} + {} < {}, which no mass distribution has", sig(e[0]), sig(e[1]), sig(e[2])));
     }
+}
+
+/// `x` rounded to 6 significant digits, printed plainly.
+fn sig(x: f64) -> String {
+    format!("{:.5e}", x)
+        .parse::<f64>()
+        .map_or_else(|_| x.to_string(), |r| r.to_string())
 }
 
 fn loads(spec: &Spec, report: &mut Report, body_index: &HashMap<&str, usize>) {

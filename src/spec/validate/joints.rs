@@ -243,7 +243,13 @@ pub(super) fn check(spec: &Spec, report: &mut Report, body_index: &HashMap<&str,
             None => tree_parent[c] = Some(i),
         }
     }
-    // poses: every body is a tree child, or free (no joint at all, with a position)
+    // poses: every body is a tree child, or free (no joint at all, with a position); a
+    // misspelt child or a duplicate name already explains a missing pose
+    let unresolved = spec
+        .joint
+        .iter()
+        .any(|j| j.child != "world" && !body_index.contains_key(j.child.as_str()));
+    let duplicate = |b: usize| body_index.get(spec.body[b].name.as_str()) != Some(&b);
     for (b, body) in spec.body.iter().enumerate() {
         let p = format!("body[{b}]");
         let free_fields = [
@@ -260,7 +266,7 @@ pub(super) fn check(spec: &Spec, report: &mut Report, body_index: &HashMap<&str,
             }
         } else if touched[b] {
             report.push(p, format!("body \"{}\" has no tree joint to the world (it is only a parent or a loop-closing child); attach it with a joint without child_origin", body.name));
-        } else if body.position.is_none() {
+        } else if body.position.is_none() && !unresolved && !duplicate(b) {
             report.push(p, format!("body \"{}\" has no pose: attach it with a [[joint]], or make it a free body by giving position = [x, y, z] (and optionally orientation, velocity, angular_velocity)", body.name));
         }
     }
