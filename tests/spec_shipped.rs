@@ -17,7 +17,15 @@ fn toml_and_json(name: &str, text: &str) -> (Spec, Spec) {
 #[test]
 fn seven_models_are_shipped() {
     let names: Vec<&str> = bundled().iter().map(|(n, _)| *n).collect();
-    for want in ["pendulum", "double_pendulum", "heavy_top", "free_body", "four_bar", "slider_crank", "robot_arm"] {
+    for want in [
+        "pendulum",
+        "double_pendulum",
+        "heavy_top",
+        "free_body",
+        "four_bar",
+        "slider_crank",
+        "robot_arm",
+    ] {
         assert!(names.contains(&want), "{want} missing from {names:?}");
     }
 }
@@ -27,7 +35,11 @@ fn toml_and_json_give_the_same_spec_and_model() {
     for (name, text) in bundled() {
         let (a, b) = toml_and_json(name, text);
         assert_eq!(a, b, "{name}: TOML and JSON specs differ");
-        assert_eq!(a.lower().unwrap(), b.lower().unwrap(), "{name}: lowered models differ");
+        assert_eq!(
+            a.lower().unwrap(),
+            b.lower().unwrap(),
+            "{name}: lowered models differ"
+        );
     }
 }
 
@@ -36,16 +48,24 @@ fn canonical_json_round_trips() {
     for (name, text) in bundled() {
         let spec = Spec::from_str(text, Format::Toml, name).unwrap();
         let json = spec.canonical_json();
-        let back = Spec::from_str(&json, Format::Json, name).unwrap_or_else(|e| panic!("{e}\n{json}"));
+        let back =
+            Spec::from_str(&json, Format::Json, name).unwrap_or_else(|e| panic!("{e}\n{json}"));
         assert_eq!(spec, back, "{name}");
-        assert_eq!(json, back.canonical_json(), "{name}: canonical JSON is not a fixed point");
+        assert_eq!(
+            json,
+            back.canonical_json(),
+            "{name}: canonical JSON is not a fixed point"
+        );
     }
 }
 
 #[test]
 fn lowering_normalises_axes_and_orders_tree_joints_first() {
     let (_, text) = bundled().iter().find(|(n, _)| *n == "four_bar").unwrap();
-    let (def, settings) = Spec::from_str(text, Format::Toml, "four_bar").unwrap().lower().unwrap();
+    let (def, settings) = Spec::from_str(text, Format::Toml, "four_bar")
+        .unwrap()
+        .lower()
+        .unwrap();
     assert_eq!(settings.order, 2);
     let loops: Vec<bool> = def.joints.iter().map(|j| j.loop_closing).collect();
     assert_eq!(loops, [false, false, false, true]);
@@ -64,14 +84,31 @@ fn spherical_rpy_and_quat_lower_alike() {
              [[joint]]\nname = \"tip\"\ntype = \"spherical\"\nparent = \"world\"\nchild = \"top\"\ninitial = {init}\n"
         )
     };
-    let a = Spec::from_str(&base("{ rpy = [0.5235987755982988, 0.0, 0.0], w = [0.0, 0.0, 30.0] }"), Format::Toml, "a").unwrap();
-    let b = Spec::from_str(&base("{ quat = [0.9659258262890683, 0.25881904510252074, 0.0, 0.0], w = [0.0, 0.0, 30.0] }"), Format::Toml, "b").unwrap();
+    let a = Spec::from_str(
+        &base("{ rpy = [0.5235987755982988, 0.0, 0.0], w = [0.0, 0.0, 30.0] }"),
+        Format::Toml,
+        "a",
+    )
+    .unwrap();
+    let b = Spec::from_str(
+        &base(
+            "{ quat = [0.9659258262890683, 0.25881904510252074, 0.0, 0.0], w = [0.0, 0.0, 30.0] }",
+        ),
+        Format::Toml,
+        "b",
+    )
+    .unwrap();
     let (da, _) = a.lower().unwrap();
     let (db, _) = b.lower().unwrap();
-    let (JointInitial::Spherical { quat: qa, w: wa }, JointInitial::Spherical { quat: qb, w: wb }) = (&da.joints[0].initial, &db.joints[0].initial) else {
+    let (JointInitial::Spherical { quat: qa, w: wa }, JointInitial::Spherical { quat: qb, w: wb }) =
+        (&da.joints[0].initial, &db.joints[0].initial)
+    else {
         panic!("spherical initial expected");
     };
-    assert!(qa.iter().zip(qb).all(|(x, y)| (x - y).abs() < 1e-15), "{qa:?} vs {qb:?}");
+    assert!(
+        qa.iter().zip(qb).all(|(x, y)| (x - y).abs() < 1e-15),
+        "{qa:?} vs {qb:?}"
+    );
     assert_eq!(wa, wb);
 }
 
@@ -113,9 +150,17 @@ initial = { q = 2.0, qd = 0.0 }
 
 #[test]
 fn interface_example_parses() {
-    let spec = Spec::from_str(INTERFACE_EXAMPLE, Format::Toml, "interface.md").unwrap_or_else(|e| panic!("{e}"));
+    let spec = Spec::from_str(INTERFACE_EXAMPLE, Format::Toml, "interface.md")
+        .unwrap_or_else(|e| panic!("{e}"));
     assert_eq!(spec.name, "DoublePendulum");
-    assert_eq!(spec.joint[0].initial.as_ref().and_then(|i| i.q.clone()).map(|q| q.values()), Some(vec![2.0]));
+    assert_eq!(
+        spec.joint[0]
+            .initial
+            .as_ref()
+            .and_then(|i| i.q.clone())
+            .map(|q| q.values()),
+        Some(vec![2.0])
+    );
     let (def, _) = spec.lower().unwrap();
     assert!(def.joints[0].actuated);
 }
@@ -124,7 +169,13 @@ fn interface_example_parses() {
 fn inertia_spellings_agree() {
     let with = |inertia: &str| {
         let text = format!("name = \"P\"\n[[body]]\nname = \"b\"\nmass = 1.0\ninertia = {inertia}\nposition = [0.0, 0.0, 0.0]\n");
-        Spec::from_str(&text, Format::Toml, "p").unwrap_or_else(|e| panic!("{e}")).lower().unwrap().0.bodies[0].inertia
+        Spec::from_str(&text, Format::Toml, "p")
+            .unwrap_or_else(|e| panic!("{e}"))
+            .lower()
+            .unwrap()
+            .0
+            .bodies[0]
+            .inertia
     };
     let a = with("[1.0, 2.0, 2.5, 0.1, 0.0, 0.0]");
     let b = with("[[1.0, 0.1, 0.0], [0.1, 2.0, 0.0], [0.0, 0.0, 2.5]]");

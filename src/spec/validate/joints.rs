@@ -169,10 +169,11 @@ fn initial(report: &mut Report, p: &str, j: &JointSpec) {
             } else {
                 format!("{nq} numbers")
             };
+            let coords = if nq == 1 { "coordinate" } else { "coordinates" };
             report.push(
                 path,
                 format!(
-                    "a {kind} joint has {nq} coordinate(s): expected {want}, found {}",
+                    "a {kind} joint has {nq} {coords}: expected {want}, found {}",
                     v.len()
                 ),
             );
