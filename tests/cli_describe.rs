@@ -25,7 +25,8 @@ fn expected(spec: &Spec) -> Vec<(String, &'static str)> {
     let mut joints: Vec<_> = spec.joint.iter().filter(|j| !j.is_loop_closing()).collect();
     joints.extend(spec.joint.iter().filter(|j| j.is_loop_closing()));
     let mut out = Vec::new();
-    let mut add = |names: Vec<String>, c: &'static str| out.extend(names.into_iter().map(|n| (n, c)));
+    let mut add =
+        |names: Vec<String>, c: &'static str| out.extend(names.into_iter().map(|n| (n, c)));
     for j in joints.iter().filter(|j| j.actuated) {
         let p = format!("joint.{}", j.name);
         match j.kind {
@@ -48,7 +49,12 @@ fn expected(spec: &Spec) -> Vec<(String, &'static str)> {
     for b in &spec.body {
         let p = format!("body.{}", b.name);
         add(idx(&format!("{p}.r"), 3), "output");
-        add((1..=3).flat_map(|i| (1..=3).map(move |j| format!("body.{}.R[{i},{j}]", b.name))).collect(), "output");
+        add(
+            (1..=3)
+                .flat_map(|i| (1..=3).map(move |j| format!("body.{}.R[{i},{j}]", b.name)))
+                .collect(),
+            "output",
+        );
         add(idx(&format!("{p}.v"), 3), "output");
         add(idx(&format!("{p}.w"), 3), "output");
     }
@@ -72,7 +78,12 @@ fn expected(spec: &Spec) -> Vec<(String, &'static str)> {
     add(idx("gravity", 3), "parameter");
     for b in &spec.body {
         add(vec![format!("body.{}.mass", b.name)], "parameter");
-        add((1..=3).flat_map(|i| (1..=3).map(move |j| format!("body.{}.inertia[{i},{j}]", b.name))).collect(), "parameter");
+        add(
+            (1..=3)
+                .flat_map(|i| (1..=3).map(move |j| format!("body.{}.inertia[{i},{j}]", b.name)))
+                .collect(),
+            "parameter",
+        );
     }
     for j in &joints {
         let p = format!("joint.{}", j.name);
@@ -95,7 +106,14 @@ fn expected(spec: &Spec) -> Vec<(String, &'static str)> {
             add(vec![format!("{p}.stiffness")], "parameter");
         }
     }
-    add(vec!["solver.max_step".into(), "solver.tolerance".into(), "solver.order".into()], "parameter");
+    add(
+        vec![
+            "solver.max_step".into(),
+            "solver.tolerance".into(),
+            "solver.order".into(),
+        ],
+        "parameter",
+    );
     out
 }
 
@@ -103,26 +121,43 @@ fn expected(spec: &Spec) -> Vec<(String, &'static str)> {
 fn describe_lists_exactly_the_interface_variables() {
     for (name, text) in bundled() {
         let spec = Spec::from_str(text, Format::Toml, name).unwrap();
-        let out = Command::new(env!("CARGO_BIN_EXE_triad")).args(["describe", name]).output().unwrap();
-        assert!(out.status.success(), "{name}: {}", String::from_utf8_lossy(&out.stderr));
+        let out = Command::new(env!("CARGO_BIN_EXE_triad"))
+            .args(["describe", name])
+            .output()
+            .unwrap();
+        assert!(
+            out.status.success(),
+            "{name}: {}",
+            String::from_utf8_lossy(&out.stderr)
+        );
         let stdout = String::from_utf8(out.stdout).unwrap();
         let mut lines = stdout.lines();
         let header: Vec<&str> = lines.next().unwrap().split_whitespace().collect();
-        assert_eq!(header[..6], ["name", "vr", "causality", "variability", "type", "unit"]);
+        assert_eq!(
+            header[..6],
+            ["name", "vr", "causality", "variability", "type", "unit"]
+        );
         let rows: Vec<Vec<&str>> = lines.map(|l| l.split_whitespace().collect()).collect();
         let got: Vec<(String, &str)> = rows.iter().map(|r| (r[0].to_string(), r[2])).collect();
         let want = expected(&spec);
         let got_c: Vec<(String, &str)> = got.iter().map(|(n, c)| (n.clone(), *c)).collect();
         assert_eq!(got_c, want, "{name}");
         for (k, r) in rows.iter().enumerate() {
-            assert_eq!(r[1], k.to_string(), "{name}: value references must be 0, 1, 2, ...");
+            assert_eq!(
+                r[1],
+                k.to_string(),
+                "{name}: value references must be 0, 1, 2, ..."
+            );
         }
     }
 }
 
 #[test]
 fn describe_columns_are_aligned() {
-    let out = Command::new(env!("CARGO_BIN_EXE_triad")).args(["describe", "double_pendulum"]).output().unwrap();
+    let out = Command::new(env!("CARGO_BIN_EXE_triad"))
+        .args(["describe", "double_pendulum"])
+        .output()
+        .unwrap();
     let stdout = String::from_utf8(out.stdout).unwrap();
     // start of the third column (causality)
     let col = |l: &str| {

@@ -157,8 +157,16 @@ pub fn run(args: &SimulateArgs) -> Result<(), CliError> {
             }
             sink.write_all(line.as_bytes()).map_err(write_err)
         };
-    let header: Vec<&str> = std::iter::once("time")
+    // names with commas (`R[1,2]`) are quoted, as CSV requires
+    let header: Vec<String> = std::iter::once("time")
         .chain(outputs.iter().map(|v| v.name.as_str()))
+        .map(|n| {
+            if n.contains(',') || n.contains('"') {
+                format!("\"{}\"", n.replace('"', "\"\""))
+            } else {
+                n.to_string()
+            }
+        })
         .collect();
     writeln!(sink, "{}", header.join(",")).map_err(write_err)?;
 
