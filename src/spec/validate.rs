@@ -72,7 +72,7 @@ fn top_level(spec: &Spec, report: &mut Report) {
             ),
         );
     }
-    if !(e.step > 0.0) {
+    if e.step.is_nan() || e.step <= 0.0 {
         report.push(
             "experiment.step",
             format!("must be positive (got {})", e.step),
@@ -256,7 +256,7 @@ pub(super) fn validate(spec: &Spec, origin: &str) -> Result<(), SpecErrors> {
         })
         .fold(1.0_f64, |a, x| a.max(x.abs()));
     for (k, residual) in kinematics::loop_residuals(&def) {
-        if !(residual <= LOOP_TOLERANCE * size) {
+        if residual.is_nan() || residual > LOOP_TOLERANCE * size {
             let name = &def.joints[k].name;
             let i = spec.joint_index(name).unwrap_or(k);
             report.push(

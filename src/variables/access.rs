@@ -154,8 +154,8 @@ pub fn write_param(
         }
         Accessor::Order => {
             settings.order = match value {
-                v if v == 2.0 => 2,
-                v if v == 4.0 => 4,
+                2.0 => 2,
+                4.0 => 4,
                 _ => return Err(format!("solver.order must be 2 or 4 (got {value})")),
             }
         }
