@@ -6,6 +6,7 @@
 //! Names follow interface.md §3 (structured, 1-based indices, matrices `[row,col]`).
 
 mod access;
+mod params;
 mod table;
 
 pub use access::{read_param, read_state, write_param};
