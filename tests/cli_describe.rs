@@ -168,3 +168,137 @@ fn describe_columns_are_aligned() {
     let cols: std::collections::BTreeSet<_> = stdout.lines().filter_map(col).collect();
     assert_eq!(cols.len(), 1, "{stdout}");
 }
+
+/// One body per joint type, every actuator kind, and a body load.
+const ZOO: &str = r#"
+name = "Zoo"
+[[body]]
+name = "a"
+mass = 1.0
+inertia = [1.0, 1.0, 1.0]
+[[body]]
+name = "b"
+mass = 1.0
+inertia = [1.0, 1.0, 1.0]
+[[body]]
+name = "c"
+mass = 1.0
+inertia = [1.0, 1.0, 1.0]
+[[body]]
+name = "d"
+mass = 1.0
+inertia = [1.0, 1.0, 1.0]
+[[body]]
+name = "e"
+mass = 1.0
+inertia = [1.0, 1.0, 1.0]
+[[body]]
+name = "f"
+mass = 1.0
+inertia = [1.0, 1.0, 1.0]
+[[body]]
+name = "g"
+mass = 1.0
+inertia = [1.0, 1.0, 1.0]
+[[joint]]
+name = "rev"
+type = "revolute"
+parent = "world"
+child = "a"
+axis = [0.0, 0.0, 2.0]
+actuated = true
+[[joint]]
+name = "pri"
+type = "prismatic"
+parent = "world"
+child = "b"
+axis = [1.0, 0.0, 0.0]
+actuated = true
+initial = { q = 0.5, qd = -1.0 }
+[[joint]]
+name = "cyl"
+type = "cylindrical"
+parent = "world"
+child = "c"
+axis = [0.0, 1.0, 0.0]
+actuated = true
+initial = { q = [0.1, 0.2], qd = [0.0, 1.0] }
+[[joint]]
+name = "uni"
+type = "universal"
+parent = "world"
+child = "d"
+axis = [1.0, 0.0, 0.0]
+axis2 = [0.0, 1.0, 0.0]
+actuated = true
+[[joint]]
+name = "sph"
+type = "spherical"
+parent = "world"
+child = "e"
+actuated = true
+damping = 0.1
+initial = { rpy = [0.1, 0.2, 0.3], w = [1.0, 0.0, 0.0] }
+[[joint]]
+name = "pla"
+type = "planar"
+parent = "world"
+child = "f"
+axis = [0.0, 0.0, 1.0]
+initial = { q = [1.0, 2.0, 0.5] }
+[[joint]]
+name = "fix"
+type = "fixed"
+parent = "world"
+child = "g"
+origin = { xyz = [0.0, 0.0, 1.0], rpy = [0.0, 0.5, 0.0] }
+[[load]]
+body = "g"
+torque = true
+force = true
+"#;
+
+#[test]
+fn describe_covers_every_joint_type() {
+    let tmp = tempfile::tempdir().unwrap();
+    let path = tmp.path().join("zoo.toml");
+    std::fs::write(&path, ZOO).unwrap();
+    let spec = Spec::from_str(ZOO, Format::Toml, "zoo.toml").unwrap_or_else(|e| panic!("{e}"));
+    let out = Command::new(env!("CARGO_BIN_EXE_triad"))
+        .args(["describe", path.to_str().unwrap()])
+        .output()
+        .unwrap();
+    assert!(
+        out.status.success(),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    let stdout = String::from_utf8(out.stdout).unwrap();
+    let got: Vec<(String, String)> = stdout
+        .lines()
+        .skip(1)
+        .map(|l| {
+            let cols: Vec<&str> = l.split_whitespace().collect();
+            (cols[0].to_string(), cols[2].to_string())
+        })
+        .collect();
+    let want: Vec<(String, String)> = expected(&spec)
+        .into_iter()
+        .map(|(n, c)| (n, c.to_string()))
+        .collect();
+    assert_eq!(got, want);
+    let units: std::collections::HashMap<&str, &str> = stdout
+        .lines()
+        .skip(1)
+        .map(|l| {
+            let cols: Vec<&str> = l.split_whitespace().collect();
+            (cols[0], cols[5])
+        })
+        .collect();
+    assert_eq!(units["joint.cyl.q[1]"], "m");
+    assert_eq!(units["joint.cyl.q[2]"], "rad");
+    assert_eq!(units["joint.pla.qd[3]"], "rad/s");
+    assert_eq!(units["joint.pla.qd[1]"], "m/s");
+    assert_eq!(units["joint.sph.quat[1]"], "1");
+    assert_eq!(units["body.g.force[3]"], "N");
+}

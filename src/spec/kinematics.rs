@@ -182,3 +182,23 @@ mod tests {
         assert!((e1 - Vec3::x()).norm() < 1e-15 && (e2 - Vec3::y()).norm() < 1e-15);
     }
 }
+
+#[cfg(test)]
+mod shipped {
+    use super::loop_residuals;
+    use crate::spec::{bundled, Format, Spec};
+
+    #[test]
+    fn shipped_loops_close_to_round_off() {
+        for name in ["four_bar", "slider_crank"] {
+            let (_, text) = bundled().iter().find(|(n, _)| *n == name).unwrap();
+            let (def, _) = Spec::from_str(text, Format::Toml, name)
+                .unwrap()
+                .lower()
+                .unwrap();
+            let res = loop_residuals(&def);
+            assert_eq!(res.len(), 1, "{name}");
+            assert!(res[0].1 < 1e-14, "{name}: loop residual {:e}", res[0].1);
+        }
+    }
+}
