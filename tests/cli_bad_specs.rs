@@ -27,6 +27,7 @@ const CASES: &[(&str, &[&str])] = &[
     ("spherical_stiffness.toml", &["joint[0].stiffness: spherical joints take no stiffness"]),
     ("no_pose.toml", &["body[1]: body \"floating\" has no pose"]),
     ("universal_not_perpendicular.toml", &["joint[0].axis2: must be perpendicular to axis"]),
+    ("tree_cycle.toml", &["joint[0]: tree joints ba, ab form a cycle that never reaches the world"]),
     ("bad_initial_length.toml", &["joint[0].initial.q: a revolute joint has 1 coordinate: expected 1 number, found 2"]),
     (
         "many_problems.toml",

@@ -271,14 +271,29 @@ pub(super) fn check(spec: &Spec, report: &mut Report, body_index: &HashMap<&str,
             report.push(p, format!("body \"{}\" has no pose: attach it with a [[joint]], or make it a free body by giving position = [x, y, z] (and optionally orientation, velocity, angular_velocity)", body.name));
         }
     }
-    // cycles among tree joints: a chain of tree parents that never reaches the world
+    // cycles among tree joints: a chain of tree parents that returns to where it started
+    // (reported once, from the cycle's lowest body index)
     for start in 0..n {
         let mut b = start;
+        let mut path = Vec::new();
         for _ in 0..=n {
             let Some(ji) = tree_parent[b] else { break };
+            path.push(ji);
             match body_index.get(spec.joint[ji].parent.as_str()) {
                 Some(&parent) if parent == start => {
-                    report.push(format!("joint[{ji}]"), format!("tree joints form a cycle through body \"{}\"; mark one joint of the cycle as loop-closing with child_origin", spec.body[start].name));
+                    let lowest = path.iter().all(|&j| {
+                        body_index
+                            .get(spec.joint[j].child.as_str())
+                            .is_none_or(|&c| c >= start)
+                    });
+                    if lowest {
+                        let names: Vec<&str> =
+                            path.iter().map(|&j| spec.joint[j].name.as_str()).collect();
+                        report.push(
+                            format!("joint[{ji}]"),
+                            format!("tree joints {} form a cycle that never reaches the world; mark the joint that closes it as loop-closing by giving it child_origin", names.join(", ")),
+                        );
+                    }
                     break;
                 }
                 Some(&parent) => b = parent,
