@@ -58,11 +58,19 @@ fn humanize(msg: &str) -> String {
             return format!("expected {expected} numbers, found {found}");
         }
     }
-    msg.replace("expected f64", "expected a number")
-        .replace("expected u8", "expected an integer")
-        .replace("expected a boolean", "expected true or false")
-        .replace("a sequence", "an array")
-        .replace("invalid type: ", "")
+    msg.replace(
+        "expected an array of length 3",
+        "expected 3 numbers [x, y, z]",
+    )
+    .replace(
+        "expected an array of length 4",
+        "expected 4 numbers [w, x, y, z]",
+    )
+    .replace("expected f64", "expected a number")
+    .replace("expected u8", "expected an integer")
+    .replace("expected a boolean", "expected true or false")
+    .replace("a sequence", "an array")
+    .replace("invalid type: ", "")
 }
 
 /// How one field is checked.
@@ -222,10 +230,10 @@ fn check_value(node: Node<'_>, path: &str, check: Check, report: &mut Report) {
                     check_table(item, &format!("{path}[{i}]"), fields, report);
                 }
             }
-            None => report.push(
-                path,
-                "expected an array of tables (write [[name]] in TOML, a list [ {...} ] in JSON)",
-            ),
+            None => {
+                let key = path.rsplit('.').next().unwrap_or(path);
+                report.push(path, format!("expected an array of tables (write [[{key}]] in TOML, \"{key}\": [ {{...}} ] in JSON)"));
+            }
         },
     }
 }
