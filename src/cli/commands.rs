@@ -21,19 +21,23 @@ pub fn check(model: &str) -> Result<(), CliError> {
     };
     println!("{origin}: ok");
     println!(
-        "model {}: {} bodies, {} joints ({} loop-closing), {} inputs, {} outputs, {} parameters",
+        "model {}: {}, {} ({} loop-closing), {}, {}, {}",
         spec.name,
-        def.bodies.len(),
-        def.joints.len(),
+        plural(def.bodies.len(), "body", "bodies"),
+        plural(def.joints.len(), "joint", "joints"),
         def.joints.iter().filter(|j| j.loop_closing).count(),
-        count(Causality::Input),
-        count(Causality::Output),
-        count(Causality::Parameter)
+        plural(count(Causality::Input), "input", "inputs"),
+        plural(count(Causality::Output), "output", "outputs"),
+        plural(count(Causality::Parameter), "parameter", "parameters")
     );
     for note in built.notes() {
         println!("note: {note}");
     }
     Ok(())
+}
+
+fn plural(n: usize, one: &str, many: &str) -> String {
+    format!("{n} {}", if n == 1 { one } else { many })
 }
 
 fn causality(c: Causality) -> &'static str {

@@ -1,16 +1,41 @@
 //! The model spec (interface.md §2): serde structs read from TOML and JSON with one schema,
 //! validation that reports every problem with file and path, and lowering to
-//! [`ModelDef`](crate::mechanics::ModelDef).
+//! [`ModelDef`].
 //!
-//! Schema decisions beyond interface.md:
+//! # Schema reference
+//!
+//! SI units, angles in radians, vectors `[x, y, z]`. Defaults in parentheses.
+//!
+//! | key | type | meaning |
+//! |---|---|---|
+//! | `name` | identifier | model identifier (FMU modelIdentifier), required |
+//! | `description` | string | free text (`""`) |
+//! | `gravity` | 3 numbers | world frame, m/s² (`[0, 0, -9.81]`) |
+//! | `[experiment]` `start`, `stop`, `step` | numbers | default experiment, s (0, 10, 0.01) |
+//! | `[solver]` `max_step`, `order`, `tolerance` | numbers | internal step (1e-3), 2 or 4 (2), Newton tolerance in (0, 1e-3) (1e-10) |
+//! | `[[body]]` `name`, `mass`, `inertia` | required | identifier; kg > 0; about the COM, body axes: `[Ixx, Iyy, Izz]`, `[Ixx, Iyy, Izz, Ixy, Ixz, Iyz]` or 3×3 rows |
+//! | `[[body]]` `com` | 3 numbers | centre of mass in the body frame (origin) |
+//! | `[[body]]` `position`, `orientation`, `velocity`, `angular_velocity` | free bodies only | see below |
+//! | `[[joint]]` `name`, `type`, `parent`, `child` | required | identifier; `revolute`, `prismatic`, `cylindrical`, `universal`, `spherical`, `planar`, `fixed`; a body or `world`; a body |
+//! | `[[joint]]` `origin = { xyz, rpy }` | placement | joint frame in the parent frame, URDF style (identity) |
+//! | `[[joint]]` `child_origin = { xyz, rpy }` | placement | loop-closing joints only: joint frame in the child frame |
+//! | `[[joint]]` `axis`, `axis2` | 3 numbers | joint axis in the joint frame (normalised); `axis2` for universal joints, ⟂ `axis` |
+//! | `[[joint]]` `actuated`, `damping`, `stiffness` | bool, numbers ≥ 0 | actuator inputs (false); viscous damping (0); spring about q = 0 (0) |
+//! | `[[joint]]` `initial = { q, qd }` | number or list | tree joints: coordinates and rates (zeros); spherical: `{ rpy \| quat, w }` |
+//! | `[[load]]` `body`, `torque`, `force` | name, bools | world-frame torque / force-at-COM inputs on a body |
+//!
+//! # Decisions beyond interface.md
 //! - a joint is **loop-closing** exactly when it names `child_origin` (its frame in the child
-//!   body frame); every other joint is a tree joint, and a body has at most one tree joint as child;
+//!   body frame); every other joint is a tree joint, and a body has at most one tree joint as
+//!   child. Loop-closing joints take no `initial`; the initial pose must satisfy them;
 //! - a **free body** (no joint at all) carries its initial state on the `[[body]]` entry itself:
 //!   `position` (required, it is what makes the body free on purpose), `orientation`
 //!   (quaternion `[w, x, y, z]` or 3×3 rows, default identity), `velocity` and `angular_velocity`
 //!   (world frame, default zero); a jointed body must not have them;
 //! - `axis` is required for revolute, prismatic, cylindrical, universal and planar joints and
-//!   refused for spherical and fixed ones; it is normalised when lowered.
+//!   refused for spherical and fixed ones; it is normalised when lowered;
+//! - planar coordinates `[x, y, angle]` are measured along the joint frame's x and y when `axis`
+//!   is its z axis (the recommended form).
 
 mod error;
 mod kinematics;
