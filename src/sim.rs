@@ -27,12 +27,20 @@ impl Simulation {
     ///
     /// # Errors
     /// [`ModelError`] from [`Model::new`].
-    pub fn new(def: &ModelDef, settings: SolverSettings, start_time: f64) -> Result<Self, ModelError> {
+    pub fn new(
+        def: &ModelDef,
+        settings: SolverSettings,
+        start_time: f64,
+    ) -> Result<Self, ModelError> {
         let model = Model::new(def, settings)?;
         let mut state = State::new(&model);
         state.set_time(start_time);
         let saved = state.clone();
-        Ok(Self { model, state, saved })
+        Ok(Self {
+            model,
+            state,
+            saved,
+        })
     }
 
     /// The model.
@@ -80,7 +88,10 @@ impl Simulation {
     pub fn advance(&mut self, h: f64) -> Result<(), AdvanceError> {
         let t0 = self.state.time();
         if !(h.is_finite() && h > 0.0) {
-            return Err(AdvanceError { error: StepError::BadStep(h), last_good_time: t0 });
+            return Err(AdvanceError {
+                error: StepError::BadStep(h),
+                last_good_time: t0,
+            });
         }
         self.saved.clone_from(&self.state);
         let n = self.substeps(h);
@@ -89,7 +100,10 @@ impl Simulation {
         for _ in 0..n {
             if let Err(error) = step(&self.model, &mut self.state, dt) {
                 self.state.clone_from(&self.saved);
-                return Err(AdvanceError { error, last_good_time: t0 });
+                return Err(AdvanceError {
+                    error,
+                    last_good_time: t0,
+                });
             }
         }
         self.state.set_time(t_end);

@@ -79,21 +79,30 @@ fn main() -> Result<(), Box<dyn Error>> {
         match j["type"].as_str() {
             Some("revolute") => {
                 let index = joint_index(name).ok_or("joint missing")?;
-                columns.push(Column::Joint { index, kind: JointType::Revolute });
+                columns.push(Column::Joint {
+                    index,
+                    kind: JointType::Revolute,
+                });
                 header.push(format!("q.{name}"));
                 vheader.push(format!("v.{name}"));
             }
             Some("spherical") => {
                 let index = joint_index(name).ok_or("joint missing")?;
-                columns.push(Column::Joint { index, kind: JointType::Spherical });
+                columns.push(Column::Joint {
+                    index,
+                    kind: JointType::Spherical,
+                });
                 header.extend(["qw", "qx", "qy", "qz"].map(|c| format!("q.{name}.{c}")));
                 vheader.extend(["wx", "wy", "wz"].map(|c| format!("v.{name}.{c}")));
             }
             _ => {
                 let body = body_index(j["child"].as_str().ok_or("child")?).ok_or("body missing")?;
                 columns.push(Column::Free { body });
-                header.extend(["x", "y", "z", "qw", "qx", "qy", "qz"].map(|c| format!("q.{name}.{c}")));
-                vheader.extend(["vx", "vy", "vz", "wx", "wy", "wz"].map(|c| format!("v.{name}.{c}")));
+                header.extend(
+                    ["x", "y", "z", "qw", "qx", "qy", "qz"].map(|c| format!("q.{name}.{c}")),
+                );
+                vheader
+                    .extend(["vx", "vy", "vz", "wx", "wy", "wz"].map(|c| format!("v.{name}.{c}")));
             }
         }
     }
@@ -112,7 +121,14 @@ fn main() -> Result<(), Box<dyn Error>> {
                 .iter()
                 .position(|s| *s == InputSlot::JointTorque { joint: j, k: 0 })
                 .ok_or("controlled joint not actuated")?;
-            pd.push((j, slot, f(&ctrl["kp"][k]), f(&ctrl["kd"][k]), f(&ctrl["q_set"][k]), f(&ctrl["tau_ff"][k])));
+            pd.push((
+                j,
+                slot,
+                f(&ctrl["kp"][k]),
+                f(&ctrl["kd"][k]),
+                f(&ctrl["q_set"][k]),
+                f(&ctrl["tau_ff"][k]),
+            ));
         }
     }
     // body torque schedule
@@ -123,7 +139,12 @@ fn main() -> Result<(), Box<dyn Error>> {
         }
         let b = body_index(inp["body"].as_str().unwrap_or("")).ok_or("loaded body missing")?;
         let slots: Vec<usize> = (0..3)
-            .map(|i| sim.model().inputs().iter().position(|s| *s == InputSlot::BodyTorque { body: b, i }))
+            .map(|i| {
+                sim.model()
+                    .inputs()
+                    .iter()
+                    .position(|s| *s == InputSlot::BodyTorque { body: b, i })
+            })
             .collect::<Option<_>>()
             .ok_or("body torque not declared")?;
         let tau: Vec<f64> = (0..3).map(|i| f(&inp["torque"][i])).collect();
@@ -149,7 +170,8 @@ fn main() -> Result<(), Box<dyn Error>> {
                     state.inputs_mut()[*s] = if on { *v } else { 0.0 };
                 }
             }
-            sim.advance(a.h).map_err(|e| format!("step failed at t = {}: {}", e.last_good_time, e.error))?;
+            sim.advance(a.h)
+                .map_err(|e| format!("step failed at t = {}: {}", e.last_good_time, e.error))?;
             t = (k * nsub + i + 1) as f64 * a.h;
         }
         rows.push(row(&sim, &columns, (k + 1) as f64 * a.dt_out));

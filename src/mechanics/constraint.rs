@@ -53,31 +53,46 @@ impl LinVec {
     /// A constant vector.
     #[must_use]
     pub fn constant(c: Vec3) -> Self {
-        Self { c, ..Self::default() }
+        Self {
+            c,
+            ..Self::default()
+        }
     }
 
     /// A point fixed in body A at `x` (body axes, relative to A's centre of mass).
     #[must_use]
     pub fn point_a(x: &Vec3) -> Self {
-        Self { a: [1.0, x.x, x.y, x.z], ..Self::default() }
+        Self {
+            a: [1.0, x.x, x.y, x.z],
+            ..Self::default()
+        }
     }
 
     /// A point fixed in body B at `x` (body axes, relative to B's centre of mass).
     #[must_use]
     pub fn point_b(x: &Vec3) -> Self {
-        Self { b: [1.0, x.x, x.y, x.z], ..Self::default() }
+        Self {
+            b: [1.0, x.x, x.y, x.z],
+            ..Self::default()
+        }
     }
 
     /// An axis fixed in body A with body-axes components `v`.
     #[must_use]
     pub fn axis_a(v: &Vec3) -> Self {
-        Self { a: [0.0, v.x, v.y, v.z], ..Self::default() }
+        Self {
+            a: [0.0, v.x, v.y, v.z],
+            ..Self::default()
+        }
     }
 
     /// An axis fixed in body B with body-axes components `v`.
     #[must_use]
     pub fn axis_b(v: &Vec3) -> Self {
-        Self { b: [0.0, v.x, v.y, v.z], ..Self::default() }
+        Self {
+            b: [0.0, v.x, v.y, v.z],
+            ..Self::default()
+        }
     }
 
     /// `self − other`.
@@ -127,7 +142,11 @@ impl DotRow {
     /// The component of `u` along the fixed world direction `e`: `g = u·e` (linear row).
     #[must_use]
     pub fn component(u: LinVec, e: Vec3) -> Self {
-        Self { u, w: LinVec::constant(e), offset: 0.0 }
+        Self {
+            u,
+            w: LinVec::constant(e),
+            offset: 0.0,
+        }
     }
 
     /// `g = u·w − offset`.
@@ -174,15 +193,36 @@ mod tests {
 
     fn sample() -> (Nodes, Nodes, Nodes, Nodes) {
         let v = |x: f64, y: f64, z: f64| Vec3::new(x, y, z);
-        let qa0 = [v(0.1, 0.2, 0.3), v(0.9, 0.1, 0.0), v(-0.1, 1.0, 0.2), v(0.0, -0.2, 1.1)];
-        let qb0 = [v(1.0, -0.5, 0.3), v(0.2, 0.9, 0.1), v(1.0, 0.0, 0.3), v(0.3, 0.1, -0.8)];
-        let qa1 = [v(0.3, 0.1, 0.2), v(0.7, 0.4, 0.1), v(-0.3, 0.9, 0.0), v(0.1, -0.1, 1.0)];
-        let qb1 = [v(0.8, -0.3, 0.6), v(0.4, 0.7, 0.2), v(0.9, -0.2, 0.5), v(0.2, 0.3, -0.9)];
+        let qa0 = [
+            v(0.1, 0.2, 0.3),
+            v(0.9, 0.1, 0.0),
+            v(-0.1, 1.0, 0.2),
+            v(0.0, -0.2, 1.1),
+        ];
+        let qb0 = [
+            v(1.0, -0.5, 0.3),
+            v(0.2, 0.9, 0.1),
+            v(1.0, 0.0, 0.3),
+            v(0.3, 0.1, -0.8),
+        ];
+        let qa1 = [
+            v(0.3, 0.1, 0.2),
+            v(0.7, 0.4, 0.1),
+            v(-0.3, 0.9, 0.0),
+            v(0.1, -0.1, 1.0),
+        ];
+        let qb1 = [
+            v(0.8, -0.3, 0.6),
+            v(0.4, 0.7, 0.2),
+            v(0.9, -0.2, 0.5),
+            v(0.2, 0.3, -0.9),
+        ];
         (qa0, qb0, qa1, qb1)
     }
 
     fn row() -> DotRow {
-        let r = LinVec::point_b(&Vec3::new(0.2, -0.1, 0.4)).sub(&LinVec::point_a(&Vec3::new(-0.3, 0.5, 0.1)));
+        let r = LinVec::point_b(&Vec3::new(0.2, -0.1, 0.4))
+            .sub(&LinVec::point_a(&Vec3::new(-0.3, 0.5, 0.1)));
         let a3 = LinVec::axis_a(&Vec3::new(0.1, 0.2, 0.97));
         DotRow::new(r, a3, 0.25)
     }

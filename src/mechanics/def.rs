@@ -93,7 +93,10 @@ impl Frame {
     /// The identity placement.
     #[must_use]
     pub fn identity() -> Self {
-        Self { translation: Vec3::zeros(), rotation: Mat3::identity() }
+        Self {
+            translation: Vec3::zeros(),
+            rotation: Mat3::identity(),
+        }
     }
 }
 
@@ -127,7 +130,10 @@ pub enum JointInitial {
 
 impl Default for JointInitial {
     fn default() -> Self {
-        Self::Coords { q: Vec::new(), qd: Vec::new() }
+        Self::Coords {
+            q: Vec::new(),
+            qd: Vec::new(),
+        }
     }
 }
 
@@ -209,7 +215,12 @@ pub struct SolverSettings {
 
 impl Default for SolverSettings {
     fn default() -> Self {
-        Self { max_step: 1e-3, order: 2, tolerance: 1e-10, max_iterations: 20 }
+        Self {
+            max_step: 1e-3,
+            order: 2,
+            tolerance: 1e-10,
+            max_iterations: 20,
+        }
     }
 }
 
