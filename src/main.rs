@@ -1,4 +1,11 @@
-//! The `triad` command line (placeholder; the CLI work replaces it).
-fn main() {
-    println!("triad {}", env!("CARGO_PKG_VERSION"));
+//! The `triad` command line (interface.md §1): `check`, `describe`, `simulate` and `build`.
+//!
+//! Every error prints a message naming the file and place, and exits non-zero; nothing is
+//! written on error.
+mod cli;
+
+use clap::Parser;
+
+fn main() -> std::process::ExitCode {
+    cli::run(cli::Cli::parse())
 }

@@ -3,7 +3,13 @@
 //! writer, fmi2Get/Set, ModelStructure, the GUID, `describe` and `simulate` all read it; nothing
 //! else invents a name or a value reference.
 //!
-//! PLACEHOLDER types written at project set-up; `VariableTable::new` is filled in by the spec work.
+//! Names follow interface.md §3 (structured, 1-based indices, matrices `[row,col]`).
+
+mod access;
+mod params;
+mod table;
+
+pub use access::{read_param, read_state, write_param};
 
 use crate::mechanics::{ModelDef, SolverSettings};
 
@@ -55,17 +61,49 @@ pub enum Accessor {
     /// `State::inputs()[i]`.
     Input(usize),
     /// Body frame origin component `i`.
-    BodyR { body: usize, i: usize },
+    BodyR {
+        /// Body index.
+        body: usize,
+        /// Row or component, 0-based.
+        i: usize,
+    },
     /// Rotation matrix element `[i, j]` (0-based).
-    BodyRot { body: usize, i: usize, j: usize },
+    BodyRot {
+        /// Body index.
+        body: usize,
+        /// Row or component, 0-based.
+        i: usize,
+        /// Column, 0-based.
+        j: usize,
+    },
     /// Body frame origin velocity component `i`.
-    BodyV { body: usize, i: usize },
+    BodyV {
+        /// Body index.
+        body: usize,
+        /// Row or component, 0-based.
+        i: usize,
+    },
     /// Body angular velocity component `i`.
-    BodyW { body: usize, i: usize },
+    BodyW {
+        /// Body index.
+        body: usize,
+        /// Row or component, 0-based.
+        i: usize,
+    },
     /// Joint coordinate `k` (spherical: quaternion component).
-    JointQ { joint: usize, k: usize },
+    JointQ {
+        /// Joint index.
+        joint: usize,
+        /// Coordinate, 0-based.
+        k: usize,
+    },
     /// Joint rate `k` (spherical: relative angular velocity in the child frame).
-    JointQd { joint: usize, k: usize },
+    JointQd {
+        /// Joint index.
+        joint: usize,
+        /// Coordinate, 0-based.
+        k: usize,
+    },
     /// `system.energy`.
     Energy,
     /// `system.work`.
@@ -81,11 +119,28 @@ pub enum Accessor {
     /// `body.B.mass`.
     Mass(usize),
     /// `body.B.inertia[i,j]`.
-    Inertia { body: usize, i: usize, j: usize },
+    Inertia {
+        /// Body index.
+        body: usize,
+        /// Row or component, 0-based.
+        i: usize,
+        /// Column, 0-based.
+        j: usize,
+    },
     /// `joint.J.q0[k]` (or `q0`).
-    Q0 { joint: usize, k: usize },
+    Q0 {
+        /// Joint index.
+        joint: usize,
+        /// Coordinate, 0-based.
+        k: usize,
+    },
     /// `joint.J.qd0[k]` (or `qd0`).
-    Qd0 { joint: usize, k: usize },
+    Qd0 {
+        /// Joint index.
+        joint: usize,
+        /// Coordinate, 0-based.
+        k: usize,
+    },
     /// `joint.J.damping` (tunable).
     Damping(usize),
     /// `joint.J.stiffness` (tunable).
@@ -134,10 +189,30 @@ pub struct VariableTable {
 
 impl VariableTable {
     /// Builds the table of a model definition (names from `def`), parameters starting at the
-    /// values of `def` and `settings`.
+    /// values of `def` and `settings`. Order: inputs (in `Model::inputs` order), outputs (per
+    /// body, per joint, then `system.*`), parameters (gravity, bodies, joints, solver); the value
+    /// reference is the position in `vars`, the ModelVariables index is `vr + 1`.
     #[must_use]
     pub fn new(def: &ModelDef, settings: &SolverSettings) -> Self {
-        let _ = (def, settings);
-        Self::default()
+        table::build(def, settings)
+    }
+
+    /// The variable with value reference `vr`.
+    #[must_use]
+    pub fn by_vr(&self, vr: u32) -> Option<&Variable> {
+        self.vars
+            .get(usize::try_from(vr).ok()?)
+            .filter(|v| v.vr == vr)
+    }
+
+    /// The variable called `name` (exact structured name).
+    #[must_use]
+    pub fn by_name(&self, name: &str) -> Option<&Variable> {
+        self.vars.iter().find(|v| v.name == name)
+    }
+
+    /// Variables of one causality, in table order.
+    pub fn with_causality(&self, causality: Causality) -> impl Iterator<Item = &Variable> {
+        self.vars.iter().filter(move |v| v.causality == causality)
     }
 }

@@ -1,0 +1,130 @@
+//! `triad check`, `triad describe` and `triad build`.
+
+use std::path::{Path, PathBuf};
+
+use triad::mechanics::Model;
+use triad::variables::{Causality, VarType, Variability, VariableTable};
+
+use super::{load, CliError};
+
+/// Validates MODEL; prints `ok`, a summary and the mechanics' notes. Writes nothing.
+pub fn check(model: &str) -> Result<(), CliError> {
+    let spec = load(model)?;
+    let (def, settings) = spec.lower()?;
+    let built = Model::new(&def, settings).map_err(|e| format!("{model}: {e}"))?;
+    let table = VariableTable::new(&def, &settings);
+    let count = |c: Causality| table.with_causality(c).count();
+    let origin = if std::path::Path::new(model).exists() {
+        model.to_string()
+    } else {
+        format!("shipped model {model}")
+    };
+    println!("{origin}: ok");
+    println!(
+        "model {}: {}, {} ({} loop-closing), {}, {}, {}",
+        spec.name,
+        plural(def.bodies.len(), "body", "bodies"),
+        plural(def.joints.len(), "joint", "joints"),
+        def.joints.iter().filter(|j| j.loop_closing).count(),
+        plural(count(Causality::Input), "input", "inputs"),
+        plural(count(Causality::Output), "output", "outputs"),
+        plural(count(Causality::Parameter), "parameter", "parameters")
+    );
+    for note in built.notes() {
+        println!("note: {note}");
+    }
+    Ok(())
+}
+
+fn plural(n: usize, one: &str, many: &str) -> String {
+    format!("{n} {}", if n == 1 { one } else { many })
+}
+
+fn causality(c: Causality) -> &'static str {
+    match c {
+        Causality::Parameter => "parameter",
+        Causality::Input => "input",
+        Causality::Output => "output",
+    }
+}
+
+fn variability(v: Variability) -> &'static str {
+    match v {
+        Variability::Fixed => "fixed",
+        Variability::Tunable => "tunable",
+        Variability::Continuous => "continuous",
+    }
+}
+
+/// Prints the variable table with aligned columns.
+pub fn describe(model: &str) -> Result<(), CliError> {
+    let spec = load(model)?;
+    let (def, settings) = spec.lower()?;
+    let table = VariableTable::new(&def, &settings);
+    let rows: Vec<[String; 7]> = table
+        .vars
+        .iter()
+        .map(|v| {
+            [
+                v.name.clone(),
+                v.vr.to_string(),
+                causality(v.causality).into(),
+                variability(v.variability).into(),
+                if v.ty == VarType::Integer {
+                    "Integer"
+                } else {
+                    "Real"
+                }
+                .into(),
+                v.unit.unwrap_or("-").into(),
+                v.description.clone(),
+            ]
+        })
+        .collect();
+    let header = [
+        "name",
+        "vr",
+        "causality",
+        "variability",
+        "type",
+        "unit",
+        "description",
+    ]
+    .map(String::from);
+    let mut widths = [0usize; 7];
+    for row in std::iter::once(&header).chain(&rows) {
+        for (w, cell) in widths.iter_mut().zip(row) {
+            *w = (*w).max(cell.chars().count());
+        }
+    }
+    let mut out = String::new();
+    for row in std::iter::once(&header).chain(&rows) {
+        let mut line = String::new();
+        for (k, (cell, w)) in row.iter().zip(widths).enumerate() {
+            if k == 6 {
+                line.push_str(cell);
+            } else if k == 1 {
+                line.push_str(&format!("{cell:>w$}  "));
+            } else {
+                line.push_str(&format!("{cell:<w$}  "));
+            }
+        }
+        out.push_str(line.trim_end());
+        out.push('\n');
+    }
+    print!("{out}");
+    Ok(())
+}
+
+/// Validates MODEL, then packages its FMU.
+pub fn build(model: &Path, output: Option<&Path>) -> Result<(), CliError> {
+    let spec = triad::spec::Spec::from_path(model)?;
+    let out = output.map_or_else(
+        || PathBuf::from(format!("{}.fmu", spec.name)),
+        Path::to_path_buf,
+    );
+    let written =
+        triad::package::build_fmu(model, &out).map_err(|e| format!("{}: {e}", model.display()))?;
+    println!("wrote {}", written.display());
+    Ok(())
+}

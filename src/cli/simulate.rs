@@ -1,0 +1,225 @@
+//! `triad simulate`: runs the model through `sim::Simulation` (the FMU's stepping path) and
+//! writes one CSV row per communication step: `time`, then every output variable.
+
+use std::io::{IsTerminal, Write};
+use std::path::PathBuf;
+
+use clap::Args;
+use indicatif::{ProgressBar, ProgressStyle};
+use triad::sim::Simulation;
+use triad::variables::{read_state, Accessor, Causality, VariableTable};
+
+use super::input::InputTable;
+use super::output::{finish, AtomicFile};
+use super::plot::{self, Series};
+use super::{load, CliError};
+
+/// Options of `triad simulate`.
+#[derive(Debug, Args)]
+pub struct SimulateArgs {
+    /// Model spec (.toml or .json), or the name of a shipped model.
+    pub model: String,
+    /// Stop time, s (default: experiment.stop).
+    #[arg(long, value_name = "T")]
+    pub stop: Option<f64>,
+    /// Communication step: one output row every H seconds (default: experiment.step).
+    #[arg(long, value_name = "H")]
+    pub step: Option<f64>,
+    /// Largest internal step, s (overrides solver.max_step).
+    #[arg(long, value_name = "S")]
+    pub max_step: Option<f64>,
+    /// Integrator order (overrides solver.order).
+    #[arg(long, value_parser = ["2", "4"])]
+    pub order: Option<String>,
+    /// Input CSV: a `time` column and columns named like input variables (zero-order hold).
+    #[arg(long, value_name = "IN.csv")]
+    pub input: Option<PathBuf>,
+    /// Output CSV (default: standard output).
+    #[arg(short, long, value_name = "OUT.csv")]
+    pub output: Option<PathBuf>,
+    /// Also plot joint coordinates, energy and work to this PNG.
+    #[arg(long, value_name = "OUT.png")]
+    pub plot: Option<PathBuf>,
+}
+
+/// Where the CSV goes: a temporary file renamed on success, or memory printed on success.
+enum Sink {
+    File(std::io::BufWriter<std::fs::File>),
+    Memory(Vec<u8>),
+}
+
+impl Write for Sink {
+    fn write(&mut self, buf: &[u8]) -> std::io::Result<usize> {
+        match self {
+            Sink::File(w) => w.write(buf),
+            Sink::Memory(v) => v.write(buf),
+        }
+    }
+
+    fn flush(&mut self) -> std::io::Result<()> {
+        match self {
+            Sink::File(w) => w.flush(),
+            Sink::Memory(v) => v.flush(),
+        }
+    }
+}
+
+/// Shortest text that reads back as the same `f64`.
+pub fn number(x: f64) -> String {
+    let a = x.abs();
+    if x == 0.0 || (1e-5..1e16).contains(&a) {
+        format!("{x}")
+    } else if x.is_finite() {
+        format!("{x:e}")
+    } else {
+        "NaN".into()
+    }
+}
+
+fn positive(name: &str, v: Option<f64>) -> Result<(), String> {
+    match v {
+        Some(x) if !(x > 0.0 && x.is_finite()) => {
+            Err(format!("--{name} must be a positive number (got {x})"))
+        }
+        _ => Ok(()),
+    }
+}
+
+/// Runs the command.
+pub fn run(args: &SimulateArgs) -> Result<(), CliError> {
+    let spec = load(&args.model)?;
+    let (def, mut settings) = spec.lower()?;
+    positive("step", args.step)?;
+    positive("max-step", args.max_step)?;
+    if let Some(s) = args.max_step {
+        settings.max_step = s;
+    }
+    if let Some(o) = &args.order {
+        settings.order = if o == "4" { 4 } else { 2 };
+    }
+    let start = spec.experiment.start;
+    let stop = args.stop.unwrap_or(spec.experiment.stop);
+    let h = args.step.unwrap_or(spec.experiment.step);
+    if !(stop.is_finite() && stop > start) {
+        return Err(format!("--stop must be after the start time {start} (got {stop})").into());
+    }
+    let table = VariableTable::new(&def, &settings);
+    let inputs = args
+        .input
+        .as_deref()
+        .map(|p| InputTable::read(p, &table))
+        .transpose()?;
+    let mut sim =
+        Simulation::new(&def, settings, start).map_err(|e| format!("{}: {e}", args.model))?;
+    let outputs: Vec<_> = table.with_causality(Causality::Output).collect();
+    let plotted: Vec<usize> = outputs
+        .iter()
+        .enumerate()
+        .filter(|(_, v)| {
+            matches!(
+                v.accessor,
+                Accessor::JointQ { .. } | Accessor::Energy | Accessor::Work
+            )
+        })
+        .map(|(k, _)| k)
+        .collect();
+    let mut series: Vec<Series> = plotted
+        .iter()
+        .map(|&k| Series {
+            name: outputs[k].name.clone(),
+            energy: !matches!(outputs[k].accessor, Accessor::JointQ { .. }),
+            points: Vec::new(),
+        })
+        .collect();
+
+    let file = args.output.as_deref().map(AtomicFile::new);
+    let mut sink = match &file {
+        Some(f) => Sink::File(f.create()?),
+        None => Sink::Memory(Vec::new()),
+    };
+    let mut pngs = Vec::new();
+    let write_err = |e: std::io::Error| CliError::Other(format!("cannot write the output: {e}"));
+    let row =
+        |sim: &Simulation, sink: &mut Sink, series: &mut Vec<Series>| -> Result<(), CliError> {
+            let t = sim.time();
+            let mut line = number(t);
+            let values: Vec<f64> = outputs
+                .iter()
+                .map(|v| read_state(v.accessor, sim.state()).unwrap_or(f64::NAN))
+                .collect();
+            for x in &values {
+                line.push(',');
+                line.push_str(&number(*x));
+            }
+            line.push('\n');
+            for (s, &k) in series.iter_mut().zip(&plotted) {
+                s.points.push((t, values[k]));
+            }
+            sink.write_all(line.as_bytes()).map_err(write_err)
+        };
+    // names with commas (`R[1,2]`) are quoted, as CSV requires
+    let header: Vec<String> = std::iter::once("time")
+        .chain(outputs.iter().map(|v| v.name.as_str()))
+        .map(|n| {
+            if n.contains(',') || n.contains('"') {
+                format!("\"{}\"", n.replace('"', "\"\""))
+            } else {
+                n.to_string()
+            }
+        })
+        .collect();
+    writeln!(sink, "{}", header.join(",")).map_err(write_err)?;
+
+    // communication points start + k·h, the last one clipped to stop
+    let n = ((stop - start) / h * (1.0 - 1e-12)).ceil().max(1.0) as u64;
+    let bar = if std::io::stderr().is_terminal() {
+        ProgressBar::new(n)
+    } else {
+        ProgressBar::hidden()
+    };
+    bar.set_style(
+        ProgressStyle::with_template("{bar:40} {pos}/{len} steps, eta {eta}")
+            .unwrap_or_else(|_| ProgressStyle::default_bar()),
+    );
+    row(&sim, &mut sink, &mut series)?;
+    for k in 1..=n {
+        if let Some(table) = &inputs {
+            table.apply(sim.time(), sim.state_mut().inputs_mut());
+        }
+        let target = if k == n { stop } else { start + k as f64 * h };
+        let dt = target - sim.time();
+        sim.advance(dt).map_err(|e| {
+            format!(
+                "{}: step from t = {} failed: {} (no output written)",
+                args.model, e.last_good_time, e.error
+            )
+        })?;
+        row(&sim, &mut sink, &mut series)?;
+        bar.inc(1);
+    }
+    bar.finish_and_clear();
+    if let Some(path) = &args.plot {
+        let png = AtomicFile::new(path);
+        plot::draw(png.path(), &spec.name, &series)
+            .map_err(|e| format!("cannot plot to {}: {e}", path.display()))?;
+        pngs.push(png);
+    }
+    match (sink, file, args.output.as_deref()) {
+        (Sink::File(w), Some(f), Some(path)) => {
+            finish(w, path)?;
+            f.commit()?;
+        }
+        (Sink::Memory(bytes), _, _) => {
+            let mut stdout = std::io::stdout().lock();
+            stdout
+                .write_all(&bytes)
+                .and_then(|()| stdout.flush())
+                .map_err(write_err)?;
+        }
+        _ => {}
+    }
+    for png in pngs {
+        png.commit()?;
+    }
+    Ok(())
+}

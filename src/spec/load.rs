@@ -1,0 +1,333 @@
+//! Reading spec text: syntax (with line and column), then a field-by-field structural pass so
+//! that every unknown field, missing field and badly shaped value is reported at once, then
+//! serde deserialisation of the whole spec.
+
+use serde::de::DeserializeOwned;
+
+use super::error::{did_you_mean, Report, SpecErrors};
+use super::values::{Coords, InertiaSpec, OrientationSpec};
+use super::{Format, JointKind, Spec, JOINT_TYPES};
+
+/// A parsed document node, TOML or JSON (kept apart: TOML can hold `nan`, JSON values cannot).
+#[derive(Clone, Copy)]
+enum Node<'a> {
+    Toml(&'a toml::Value),
+    Json(&'a serde_json::Value),
+}
+
+impl<'a> Node<'a> {
+    /// Keys and values of a table/object.
+    fn entries(self) -> Option<Vec<(&'a str, Node<'a>)>> {
+        match self {
+            Node::Toml(toml::Value::Table(t)) => {
+                Some(t.iter().map(|(k, v)| (k.as_str(), Node::Toml(v))).collect())
+            }
+            Node::Json(serde_json::Value::Object(o)) => {
+                Some(o.iter().map(|(k, v)| (k.as_str(), Node::Json(v))).collect())
+            }
+            _ => None,
+        }
+    }
+
+    /// Elements of an array.
+    fn elements(self) -> Option<Vec<Node<'a>>> {
+        match self {
+            Node::Toml(toml::Value::Array(a)) => Some(a.iter().map(Node::Toml).collect()),
+            Node::Json(serde_json::Value::Array(a)) => Some(a.iter().map(Node::Json).collect()),
+            _ => None,
+        }
+    }
+
+    /// Deserialises this node; the error message is rewritten for people.
+    fn parse<T: DeserializeOwned>(self) -> Result<T, String> {
+        match self {
+            Node::Toml(v) => v.clone().try_into::<T>().map_err(|e| humanize(e.message())),
+            Node::Json(v) => {
+                serde_json::from_value::<T>(v.clone()).map_err(|e| humanize(&e.to_string()))
+            }
+        }
+    }
+}
+
+/// Rewrites serde's type vocabulary into the spec's.
+fn humanize(msg: &str) -> String {
+    let msg = msg.trim().trim_end_matches('\n');
+    if let Some(rest) = msg.strip_prefix("invalid length ") {
+        // "invalid length 2, expected an array of length 3"
+        if let Some((found, expected)) = rest.split_once(", expected an array of length ") {
+            return format!("expected {expected} numbers, found {found}");
+        }
+    }
+    msg.replace(
+        "expected an array of length 3",
+        "expected 3 numbers [x, y, z]",
+    )
+    .replace(
+        "expected an array of length 4",
+        "expected 4 numbers [w, x, y, z]",
+    )
+    .replace("expected f64", "expected a number")
+    .replace("expected u8", "expected an integer")
+    .replace("expected a boolean", "expected true or false")
+    .replace("a sequence", "an array")
+    .replace("invalid type: ", "")
+}
+
+/// How one field is checked.
+#[derive(Clone, Copy)]
+enum Check {
+    /// A value deserialised on its own.
+    Value(for<'a> fn(Node<'a>) -> Result<(), String>),
+    /// A table with these fields.
+    Table(&'static [Field]),
+    /// An array of tables with these fields.
+    Tables(&'static [Field]),
+}
+
+/// One field of a table: name, required, check.
+#[derive(Clone, Copy)]
+struct Field {
+    name: &'static str,
+    required: bool,
+    check: Check,
+}
+
+fn is<T: DeserializeOwned>(n: Node<'_>) -> Result<(), String> {
+    n.parse::<T>().map(|_| ())
+}
+
+fn joint_type(n: Node<'_>) -> Result<(), String> {
+    let word: String = n.parse()?;
+    if n.parse::<JointKind>().is_ok() {
+        return Ok(());
+    }
+    Err(format!(
+        "unknown joint type \"{word}\"; valid types are {}{}",
+        JOINT_TYPES.join(", "),
+        did_you_mean(&word, JOINT_TYPES)
+    ))
+}
+
+const fn req(name: &'static str, check: Check) -> Field {
+    Field {
+        name,
+        required: true,
+        check,
+    }
+}
+
+const fn opt(name: &'static str, check: Check) -> Field {
+    Field {
+        name,
+        required: false,
+        check,
+    }
+}
+
+const VEC3: Check = Check::Value(is::<[f64; 3]>);
+const NUM: Check = Check::Value(is::<f64>);
+const BOOL: Check = Check::Value(is::<bool>);
+const TEXT: Check = Check::Value(is::<String>);
+
+const EXPERIMENT: &[Field] = &[opt("start", NUM), opt("stop", NUM), opt("step", NUM)];
+const SOLVER: &[Field] = &[
+    opt("max_step", NUM),
+    opt("order", Check::Value(is::<u8>)),
+    opt("tolerance", NUM),
+];
+const ORIGIN: &[Field] = &[opt("xyz", VEC3), opt("rpy", VEC3)];
+const INITIAL: &[Field] = &[
+    opt("q", Check::Value(is::<Coords>)),
+    opt("qd", Check::Value(is::<Coords>)),
+    opt("rpy", VEC3),
+    opt("quat", Check::Value(is::<[f64; 4]>)),
+    opt("w", VEC3),
+];
+const BODY: &[Field] = &[
+    req("name", TEXT),
+    req("mass", NUM),
+    opt("com", VEC3),
+    req("inertia", Check::Value(is::<InertiaSpec>)),
+    opt("position", VEC3),
+    opt("orientation", Check::Value(is::<OrientationSpec>)),
+    opt("velocity", VEC3),
+    opt("angular_velocity", VEC3),
+];
+const JOINT: &[Field] = &[
+    req("name", TEXT),
+    req("type", Check::Value(joint_type)),
+    req("parent", TEXT),
+    req("child", TEXT),
+    opt("origin", Check::Table(ORIGIN)),
+    opt("child_origin", Check::Table(ORIGIN)),
+    opt("axis", VEC3),
+    opt("axis2", VEC3),
+    opt("actuated", BOOL),
+    opt("damping", NUM),
+    opt("stiffness", NUM),
+    opt("initial", Check::Table(INITIAL)),
+];
+const LOAD: &[Field] = &[req("body", TEXT), opt("torque", BOOL), opt("force", BOOL)];
+const TOP: &[Field] = &[
+    req("name", TEXT),
+    opt("description", TEXT),
+    opt("gravity", VEC3),
+    opt("experiment", Check::Table(EXPERIMENT)),
+    opt("solver", Check::Table(SOLVER)),
+    opt("body", Check::Tables(BODY)),
+    opt("joint", Check::Tables(JOINT)),
+    opt("load", Check::Tables(LOAD)),
+];
+
+fn join(path: &str, key: &str) -> String {
+    if path.is_empty() {
+        key.to_string()
+    } else {
+        format!("{path}.{key}")
+    }
+}
+
+/// Checks a table against its fields, reporting every problem.
+fn check_table(node: Node<'_>, path: &str, fields: &[Field], report: &mut Report) {
+    let Some(entries) = node.entries() else {
+        report.push(path, "expected a table { ... }");
+        return;
+    };
+    for (key, value) in &entries {
+        let here = join(path, key);
+        match fields.iter().find(|f| f.name == *key) {
+            None => {
+                let names: Vec<&str> = fields.iter().map(|f| f.name).collect();
+                let hint = did_you_mean(key, names.iter().copied());
+                let hint = if hint.is_empty() {
+                    format!("; expected one of: {}", names.join(", "))
+                } else {
+                    hint
+                };
+                report.push(here, format!("unknown field \"{key}\"{hint}"));
+            }
+            Some(field) => check_value(*value, &here, field.check, report),
+        }
+    }
+    for field in fields.iter().filter(|f| f.required) {
+        if !entries.iter().any(|(k, _)| *k == field.name) {
+            report.push(path, format!("missing field \"{}\"", field.name));
+        }
+    }
+}
+
+fn check_value(node: Node<'_>, path: &str, check: Check, report: &mut Report) {
+    match check {
+        Check::Value(f) => {
+            if let Err(m) = f(node) {
+                report.push(path, m);
+            }
+        }
+        Check::Table(fields) => check_table(node, path, fields, report),
+        Check::Tables(fields) => match node.elements() {
+            Some(items) => {
+                for (i, item) in items.into_iter().enumerate() {
+                    check_table(item, &format!("{path}[{i}]"), fields, report);
+                }
+            }
+            None => {
+                let key = path.rsplit('.').next().unwrap_or(path);
+                report.push(path, format!("expected an array of tables (write [[{key}]] in TOML, \"{key}\": [ {{...}} ] in JSON)"));
+            }
+        },
+    }
+}
+
+/// Line and column (1-based) of a byte offset.
+fn line_col(text: &str, offset: usize) -> (usize, usize) {
+    let before = &text[..offset.min(text.len())];
+    let line = before.matches('\n').count() + 1;
+    let col = before.rsplit('\n').next().map_or(0, |l| l.chars().count()) + 1;
+    (line, col)
+}
+
+/// Parses spec text into a [`Spec`], reporting syntax and structure problems (not consistency:
+/// see `validate`).
+pub(super) fn parse(text: &str, format: Format, origin: &str) -> Result<Spec, SpecErrors> {
+    let mut report = Report::default();
+    let spec = match format {
+        Format::Toml => {
+            let value: toml::Value = toml::from_str(text).map_err(|e| {
+                let at = e.span().map(|s| line_col(text, s.start));
+                let path = at.map_or(String::new(), |(l, c)| format!("line {l}, column {c}"));
+                SpecErrors::single(
+                    origin,
+                    path,
+                    format!(
+                        "TOML syntax error: {}",
+                        e.message().trim().replace('\n', "; ")
+                    ),
+                )
+            })?;
+            check_table(Node::Toml(&value), "", TOP, &mut report);
+            report.finish(origin)?;
+            Node::Toml(&value).parse::<Spec>()
+        }
+        Format::Json => {
+            let value: serde_json::Value = serde_json::from_str(text).map_err(|e| {
+                let msg = e.to_string();
+                let msg = msg.split(" at line ").next().unwrap_or(&msg).to_string();
+                SpecErrors::single(
+                    origin,
+                    format!("line {}, column {}", e.line(), e.column()),
+                    format!("JSON syntax error: {msg}"),
+                )
+            })?;
+            check_table(Node::Json(&value), "", TOP, &mut report);
+            report.finish(origin)?;
+            Node::Json(&value).parse::<Spec>()
+        }
+    };
+    spec.map_err(|m| SpecErrors::single(origin, "", m))
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn every_structural_problem_reported() {
+        let text = r#"
+name = "M"
+bogus = 1
+[[body]]
+name = "a"
+mas = 1.0
+inertia = [1, 1]
+[[joint]]
+name = "j"
+type = "hinge"
+parent = "world"
+child = "a"
+axis = [0, 1]
+"#;
+        let e = parse(text, Format::Toml, "m.toml").unwrap_err().to_string();
+        for want in [
+            "m.toml: bogus: unknown field",
+            "body[0].mas: unknown field \"mas\"; did you mean \"mass\"?",
+            "body[0]: missing field \"mass\"",
+            "body[0].inertia: expected [Ixx, Iyy, Izz]",
+            "joint[0].type: unknown joint type \"hinge\"; valid types are revolute",
+            "joint[0].axis: expected 3 numbers, found 2",
+        ] {
+            assert!(e.contains(want), "missing {want:?} in\n{e}");
+        }
+    }
+
+    #[test]
+    fn syntax_error_has_line_and_column() {
+        let e = parse("name = \"M\"\nmass = = 1\n", Format::Toml, "m.toml")
+            .unwrap_err()
+            .to_string();
+        assert!(e.starts_with("m.toml: line 2, column"), "{e}");
+        let e = parse("{\"name\": \"M\",\n }", Format::Json, "m.json")
+            .unwrap_err()
+            .to_string();
+        assert!(e.starts_with("m.json: line 2, column"), "{e}");
+    }
+}

@@ -1,0 +1,178 @@
+//! Lowering a spec to the mechanics' [`ModelDef`] and [`SolverSettings`].
+
+use crate::math::{matrix_to_quat, quat_to_matrix, rpy_to_matrix, Mat3, Vec3};
+use crate::mechanics::{
+    BodyDef, BodyLoadDef, Frame, FreeBodyInitial, JointDef, JointInitial, JointType, ModelDef,
+    SolverSettings,
+};
+
+use super::error::SpecErrors;
+use super::values::{rows_to_matrix, OrientationSpec};
+use super::{validate, JointKind, JointSpec, OriginSpec, Spec};
+
+/// The mechanics' joint type of a spec joint type.
+pub(crate) fn joint_type(kind: JointKind) -> JointType {
+    match kind {
+        JointKind::Revolute => JointType::Revolute,
+        JointKind::Prismatic => JointType::Prismatic,
+        JointKind::Cylindrical => JointType::Cylindrical,
+        JointKind::Universal => JointType::Universal,
+        JointKind::Spherical => JointType::Spherical,
+        JointKind::Planar => JointType::Planar,
+        JointKind::Fixed => JointType::Fixed,
+    }
+}
+
+fn frame(o: &OriginSpec) -> Frame {
+    Frame {
+        translation: Vec3::from(o.xyz),
+        rotation: rpy_to_matrix(&Vec3::from(o.rpy)),
+    }
+}
+
+fn unit(v: Option<[f64; 3]>) -> Vec3 {
+    let v = Vec3::from(v.unwrap_or([0.0, 0.0, 1.0]));
+    v.try_normalize(0.0).unwrap_or_else(Vec3::z)
+}
+
+fn initial(j: &JointSpec) -> JointInitial {
+    let Some(init) = &j.initial else {
+        return if j.kind == JointKind::Spherical {
+            JointInitial::Spherical {
+                quat: [1.0, 0.0, 0.0, 0.0],
+                w: Vec3::zeros(),
+            }
+        } else {
+            JointInitial::default()
+        };
+    };
+    if j.kind == JointKind::Spherical {
+        let quat = match (init.quat, init.rpy) {
+            (Some(q), _) => {
+                let n = q.iter().map(|x| x * x).sum::<f64>().sqrt();
+                if n > 0.0 {
+                    q.map(|x| x / n)
+                } else {
+                    [1.0, 0.0, 0.0, 0.0]
+                }
+            }
+            (None, Some(rpy)) => matrix_to_quat(&rpy_to_matrix(&Vec3::from(rpy))),
+            (None, None) => [1.0, 0.0, 0.0, 0.0],
+        };
+        JointInitial::Spherical {
+            quat,
+            w: Vec3::from(init.w.unwrap_or_default()),
+        }
+    } else {
+        let q = init
+            .q
+            .as_ref()
+            .map(super::Coords::values)
+            .unwrap_or_default();
+        let qd = init
+            .qd
+            .as_ref()
+            .map(super::Coords::values)
+            .unwrap_or_default();
+        JointInitial::Coords { q, qd }
+    }
+}
+
+fn orientation(o: Option<&OrientationSpec>) -> Mat3 {
+    match o {
+        None => Mat3::identity(),
+        Some(OrientationSpec::Quat(q)) => quat_to_matrix(q),
+        Some(OrientationSpec::Matrix(m)) => rows_to_matrix(m),
+    }
+}
+
+/// Builds the definition of a structurally valid spec (see `validate::structure`); lookups that
+/// cannot fail on such a spec fall back to harmless values instead of panicking.
+pub(crate) fn build(spec: &Spec) -> (ModelDef, SolverSettings) {
+    let index = |name: &str| spec.body.iter().position(|b| b.name == name);
+    let bodies = spec
+        .body
+        .iter()
+        .map(|b| BodyDef {
+            name: b.name.clone(),
+            mass: b.mass,
+            com: Vec3::from(b.com),
+            inertia: b.inertia.matrix(),
+        })
+        .collect();
+    // tree joints first, then loop-closing ones, each in spec order
+    let ordered = spec
+        .joint
+        .iter()
+        .filter(|j| !j.is_loop_closing())
+        .chain(spec.joint.iter().filter(|j| j.is_loop_closing()));
+    let joints = ordered
+        .map(|j| JointDef {
+            name: j.name.clone(),
+            kind: joint_type(j.kind),
+            parent: if j.parent == "world" {
+                None
+            } else {
+                index(&j.parent)
+            },
+            child: index(&j.child).unwrap_or(0),
+            parent_frame: frame(&j.origin),
+            child_frame: j.child_origin.as_ref().map_or_else(Frame::identity, frame),
+            axis: unit(j.axis),
+            axis2: if j.kind == JointKind::Universal {
+                unit(j.axis2)
+            } else {
+                Vec3::zeros()
+            },
+            actuated: j.actuated,
+            damping: j.damping,
+            stiffness: j.stiffness,
+            loop_closing: j.is_loop_closing(),
+            initial: initial(j),
+        })
+        .collect();
+    let loads = spec
+        .load
+        .iter()
+        .filter_map(|l| {
+            index(&l.body).map(|body| BodyLoadDef {
+                body,
+                torque: l.torque,
+                force: l.force,
+            })
+        })
+        .collect();
+    let free_bodies = spec
+        .body
+        .iter()
+        .enumerate()
+        .filter(|(_, b)| b.position.is_some())
+        .map(|(body, b)| FreeBodyInitial {
+            body,
+            position: Vec3::from(b.position.unwrap_or_default()),
+            orientation: orientation(b.orientation.as_ref()),
+            velocity: Vec3::from(b.velocity.unwrap_or_default()),
+            angular_velocity: Vec3::from(b.angular_velocity.unwrap_or_default()),
+        })
+        .collect();
+    let def = ModelDef {
+        gravity: Vec3::from(spec.gravity),
+        bodies,
+        joints,
+        loads,
+        free_bodies,
+    };
+    let settings = SolverSettings {
+        max_step: spec.solver.max_step,
+        order: spec.solver.order,
+        tolerance: spec.solver.tolerance,
+        ..SolverSettings::default()
+    };
+    (def, settings)
+}
+
+/// Checks the spec's structure and lowers it.
+pub(super) fn lower(spec: &Spec, origin: &str) -> Result<(ModelDef, SolverSettings), SpecErrors> {
+    validate::structure(spec).finish(origin)?;
+    Ok(build(spec))
+}

@@ -1,0 +1,303 @@
+//! Consistency checks of a parsed spec. Every check runs and every problem is reported; the
+//! mechanics is asked to build the model only when the spec itself is consistent.
+
+use std::collections::HashMap;
+
+use nalgebra::SymmetricEigen;
+
+use crate::math::Vec3;
+use crate::mechanics::{Model, ModelError};
+
+use super::error::{did_you_mean, Report, SpecErrors};
+use super::values::{rows_to_matrix, OrientationSpec};
+use super::{kinematics, lower, Spec};
+
+mod joints;
+
+/// Largest loop-closure violation accepted at the initial pose, relative to the model's size.
+const LOOP_TOLERANCE: f64 = 1e-8;
+
+/// `[A-Za-z_][A-Za-z0-9_]*`.
+pub(crate) fn is_identifier(s: &str) -> bool {
+    let mut chars = s.chars();
+    matches!(chars.next(), Some(c) if c.is_ascii_alphabetic() || c == '_')
+        && chars.all(|c| c.is_ascii_alphanumeric() || c == '_')
+}
+
+fn check_name(report: &mut Report, path: &str, name: &str) {
+    if !is_identifier(name) {
+        report.push(path, format!("\"{name}\" is not an identifier: use letters, digits and _ and do not start with a digit"));
+    }
+}
+
+fn check_finite(report: &mut Report, path: &str, values: &[f64]) {
+    if values.iter().any(|x| !x.is_finite()) {
+        report.push(path, "must be finite (nan and inf are not allowed)");
+    }
+}
+
+/// Checks names for being identifiers and unique; returns name → first index.
+fn check_names<'a>(
+    report: &mut Report,
+    what: &str,
+    names: impl Iterator<Item = &'a str>,
+) -> HashMap<&'a str, usize> {
+    let mut seen: HashMap<&str, usize> = HashMap::new();
+    for (i, name) in names.enumerate() {
+        let path = format!("{what}[{i}].name");
+        check_name(report, &path, name);
+        if let Some(first) = seen.get(name) {
+            report.push(
+                path,
+                format!("duplicate {what} name \"{name}\" (also {what}[{first}])"),
+            );
+        } else {
+            seen.insert(name, i);
+        }
+    }
+    seen
+}
+
+fn top_level(spec: &Spec, report: &mut Report) {
+    check_name(report, "name", &spec.name);
+    check_finite(report, "gravity", &spec.gravity);
+    let e = &spec.experiment;
+    check_finite(report, "experiment", &[e.start, e.stop, e.step]);
+    if e.start.is_finite() && e.stop.is_finite() && e.stop <= e.start {
+        report.push(
+            "experiment.stop",
+            format!(
+                "must be greater than experiment.start ({} <= {})",
+                e.stop, e.start
+            ),
+        );
+    }
+    if e.step.is_nan() || e.step <= 0.0 {
+        report.push(
+            "experiment.step",
+            format!("must be positive (got {})", e.step),
+        );
+    }
+    let s = &spec.solver;
+    if !(s.max_step > 0.0 && s.max_step.is_finite()) {
+        report.push(
+            "solver.max_step",
+            format!("must be positive and finite (got {})", s.max_step),
+        );
+    }
+    if s.order != 2 && s.order != 4 {
+        report.push("solver.order", format!("must be 2 or 4 (got {})", s.order));
+    }
+    if !(s.tolerance > 0.0 && s.tolerance < 1e-3) {
+        report.push(
+            "solver.tolerance",
+            format!("must be in (0, 1e-3) (got {})", s.tolerance),
+        );
+    }
+}
+
+fn bodies(spec: &Spec, report: &mut Report) {
+    for (i, b) in spec.body.iter().enumerate() {
+        let p = format!("body[{i}]");
+        if b.name == "world" {
+            report.push(
+                format!("{p}.name"),
+                "\"world\" is reserved for the fixed world frame",
+            );
+        }
+        if !(b.mass > 0.0 && b.mass.is_finite()) {
+            report.push(
+                format!("{p}.mass"),
+                format!("must be positive and finite (got {})", b.mass),
+            );
+        }
+        check_finite(report, &format!("{p}.com"), &b.com);
+        inertia(report, &format!("{p}.inertia"), b);
+        for (field, v) in [
+            ("position", b.position),
+            ("velocity", b.velocity),
+            ("angular_velocity", b.angular_velocity),
+        ] {
+            if let Some(v) = v {
+                check_finite(report, &format!("{p}.{field}"), &v);
+            }
+        }
+        match &b.orientation {
+            Some(o) if o.numbers().iter().any(|x| !x.is_finite()) => {
+                check_finite(report, &format!("{p}.orientation"), &o.numbers())
+            }
+            Some(OrientationSpec::Quat(q))
+                if q.iter().map(|x| x * x).sum::<f64>().sqrt() < 1e-9 =>
+            {
+                report.push(format!("{p}.orientation"), "quaternion has zero length");
+            }
+            Some(OrientationSpec::Matrix(m)) => {
+                let r = rows_to_matrix(m);
+                let err = (r.transpose() * r - crate::math::Mat3::identity()).amax();
+                if err > 1e-9 || r.determinant() < 0.0 {
+                    report.push(
+                        format!("{p}.orientation"),
+                        format!(
+                            "is not a rotation matrix (|RᵀR − I| = {err:.1e}, det = {:.3})",
+                            r.determinant()
+                        ),
+                    );
+                }
+            }
+            _ => {}
+        }
+    }
+}
+
+fn inertia(report: &mut Report, path: &str, b: &super::BodySpec) {
+    let numbers = b.inertia.numbers();
+    if numbers.iter().any(|x| !x.is_finite()) {
+        check_finite(report, path, &numbers);
+        return;
+    }
+    let m = b.inertia.matrix();
+    let scale = m.amax().max(f64::MIN_POSITIVE);
+    if (m - m.transpose()).amax() > 1e-12 * scale {
+        report.push(path, "is not symmetric");
+        return;
+    }
+    let eig = SymmetricEigen::new(m).eigenvalues;
+    let mut e = [eig[0], eig[1], eig[2]];
+    e.sort_by(f64::total_cmp);
+    if e[0] <= 0.0 {
+        report.push(
+            path,
+            format!(
+                "is not positive definite (principal moments {}, {}, {})",
+                sig(e[0]),
+                sig(e[1]),
+                sig(e[2])
+            ),
+        );
+    } else if e[0] + e[1] < e[2] * (1.0 - 1e-12) {
+        report.push(path, format!("violates the triangle inequality: principal moments {} + {} < {}, which no mass distribution has", sig(e[0]), sig(e[1]), sig(e[2])));
+    }
+}
+
+/// `x` rounded to 6 significant digits, printed plainly.
+fn sig(x: f64) -> String {
+    format!("{:.5e}", x)
+        .parse::<f64>()
+        .map_or_else(|_| x.to_string(), |r| r.to_string())
+}
+
+fn loads(spec: &Spec, report: &mut Report, body_index: &HashMap<&str, usize>) {
+    let mut seen: HashMap<&str, usize> = HashMap::new();
+    for (i, l) in spec.load.iter().enumerate() {
+        let p = format!("load[{i}]");
+        if !body_index.contains_key(l.body.as_str()) {
+            let hint = did_you_mean(&l.body, body_index.keys().copied());
+            report.push(
+                format!("{p}.body"),
+                format!("no body named \"{}\"{hint}", l.body),
+            );
+        }
+        if !l.torque && !l.force {
+            report.push(
+                p.clone(),
+                "adds no inputs: set torque = true and/or force = true",
+            );
+        }
+        if let Some(first) = seen.insert(l.body.as_str(), i) {
+            report.push(
+                format!("{p}.body"),
+                format!(
+                    "body \"{}\" already has a load (load[{first}]); merge them",
+                    l.body
+                ),
+            );
+        }
+    }
+}
+
+/// Every check that needs only the spec (no mechanics).
+pub(crate) fn structure(spec: &Spec) -> Report {
+    let mut report = Report::default();
+    top_level(spec, &mut report);
+    let body_index = check_names(
+        &mut report,
+        "body",
+        spec.body.iter().map(|b| b.name.as_str()),
+    );
+    check_names(
+        &mut report,
+        "joint",
+        spec.joint.iter().map(|j| j.name.as_str()),
+    );
+    bodies(spec, &mut report);
+    joints::check(spec, &mut report, &body_index);
+    loads(spec, &mut report, &body_index);
+    if spec.body.is_empty() {
+        report.push("body", "the model has no bodies: add at least one [[body]]");
+    }
+    report
+}
+
+/// Full validation: structure, loop closure at the initial pose, and the mechanics' own set-up.
+pub(super) fn validate(spec: &Spec, origin: &str) -> Result<(), SpecErrors> {
+    let mut report = structure(spec);
+    if !report.is_empty() {
+        return report.finish(origin);
+    }
+    let (def, settings) = lower::build(spec);
+    let size = spec
+        .joint
+        .iter()
+        .flat_map(|j| {
+            j.origin
+                .xyz
+                .into_iter()
+                .chain(j.child_origin.map_or([0.0; 3], |o| o.xyz))
+        })
+        .fold(1.0_f64, |a, x| a.max(x.abs()));
+    for (k, residual) in kinematics::loop_residuals(&def) {
+        if residual.is_nan() || residual > LOOP_TOLERANCE * size {
+            let name = &def.joints[k].name;
+            let i = spec.joint_index(name).unwrap_or(k);
+            report.push(
+                format!("joint[{i}]"),
+                format!("loop-closing joint \"{name}\" is violated by the initial pose by {residual:.3e}: choose the tree joints' initial q so that the loop closes (child_origin must meet origin)"),
+            );
+        }
+    }
+    if report.is_empty() {
+        if let Err(e) = Model::new(&def, settings) {
+            match &e {
+                ModelError::LoopNotClosed { joint, residual } => {
+                    let i = spec
+                        .joint_index(joint)
+                        .map_or(String::from("joint"), |i| format!("joint[{i}]"));
+                    report.push(i, format!("loop-closing joint \"{joint}\" is violated by the initial pose by {residual:.3e}: choose the tree joints' initial q so that the loop closes"));
+                }
+                other => report.push("", format!("the mechanics rejected the model: {other}")),
+            }
+        }
+    }
+    report.finish(origin)
+}
+
+/// Axis helper shared with the joint checks: the unit vector or `None` for a zero vector.
+pub(crate) fn normalized(v: [f64; 3]) -> Option<Vec3> {
+    Vec3::from(v).try_normalize(1e-300)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn identifiers() {
+        assert!(is_identifier("link_1") && is_identifier("_a"));
+        assert!(
+            !is_identifier("1a")
+                && !is_identifier("a-b")
+                && !is_identifier("")
+                && !is_identifier("a.b")
+        );
+    }
+}

@@ -1,0 +1,165 @@
+//! Reading and writing variable values through their [`Accessor`]: inputs, outputs and tunable
+//! parameters live in the [`State`]; fixed parameters in the [`ModelDef`] and [`SolverSettings`].
+
+use super::Accessor;
+use crate::mechanics::{JointInitial, ModelDef, SolverSettings, State};
+
+/// Value of an input, an output or a tunable parameter (damping, stiffness) in `state`; `None`
+/// for fixed parameters (see [`read_param`]) and for outputs the state does not hold.
+#[must_use]
+pub fn read_state(acc: Accessor, state: &State) -> Option<f64> {
+    let out = state.outputs();
+    match acc {
+        Accessor::Input(i) => state.inputs().get(i).copied(),
+        Accessor::BodyR { body, i } => out.bodies.get(body).and_then(|b| b.r.get(i).copied()),
+        Accessor::BodyRot { body, i, j } => out
+            .bodies
+            .get(body)
+            .and_then(|b| b.rot.get((i, j)).copied()),
+        Accessor::BodyV { body, i } => out.bodies.get(body).and_then(|b| b.v.get(i).copied()),
+        Accessor::BodyW { body, i } => out.bodies.get(body).and_then(|b| b.w.get(i).copied()),
+        Accessor::JointQ { joint, k } => out.joints.get(joint).and_then(|j| j.q.get(k).copied()),
+        Accessor::JointQd { joint, k } => out.joints.get(joint).and_then(|j| j.qd.get(k).copied()),
+        Accessor::Energy => Some(out.energy),
+        Accessor::Work => Some(out.work),
+        Accessor::P(i) => out.p.get(i).copied(),
+        Accessor::L(i) => out.l.get(i).copied(),
+        Accessor::ConstraintResidual => Some(out.constraint_residual),
+        // the table only makes these for joints of the same definition as the state
+        Accessor::Damping(j) => Some(state.damping(j)),
+        Accessor::Stiffness(j) => Some(state.stiffness(j)),
+        _ => None,
+    }
+}
+
+fn initial(def: &ModelDef, joint: usize, k: usize, rate: bool) -> Option<f64> {
+    match (&def.joints.get(joint)?.initial, rate) {
+        (JointInitial::Coords { q, .. }, false) => Some(q.get(k).copied().unwrap_or(0.0)),
+        (JointInitial::Coords { qd, .. }, true) => Some(qd.get(k).copied().unwrap_or(0.0)),
+        (JointInitial::Spherical { quat, .. }, false) => quat.get(k).copied(),
+        (JointInitial::Spherical { w, .. }, true) => w.get(k).copied(),
+    }
+}
+
+/// Value of a parameter as defined in `def` and `settings` (including the start values of the
+/// tunable damping and stiffness); `None` for inputs and outputs.
+#[must_use]
+pub fn read_param(acc: Accessor, def: &ModelDef, settings: &SolverSettings) -> Option<f64> {
+    match acc {
+        Accessor::Gravity(i) => def.gravity.get(i).copied(),
+        Accessor::Mass(b) => def.bodies.get(b).map(|b| b.mass),
+        Accessor::Inertia { body, i, j } => def
+            .bodies
+            .get(body)
+            .and_then(|b| b.inertia.get((i, j)).copied()),
+        Accessor::Q0 { joint, k } => initial(def, joint, k, false),
+        Accessor::Qd0 { joint, k } => initial(def, joint, k, true),
+        Accessor::Damping(j) => def.joints.get(j).map(|j| j.damping),
+        Accessor::Stiffness(j) => def.joints.get(j).map(|j| j.stiffness),
+        Accessor::MaxStep => Some(settings.max_step),
+        Accessor::Tolerance => Some(settings.tolerance),
+        Accessor::Order => Some(f64::from(settings.order)),
+        _ => None,
+    }
+}
+
+fn set_initial(
+    def: &mut ModelDef,
+    joint: usize,
+    k: usize,
+    rate: bool,
+    value: f64,
+) -> Result<(), String> {
+    let j = def
+        .joints
+        .get_mut(joint)
+        .ok_or_else(|| format!("no joint {joint}"))?;
+    let (nq, dof) = (j.kind.nq(), j.kind.dof());
+    let slot = match (&mut j.initial, rate) {
+        (JointInitial::Coords { q, .. }, false) => {
+            q.resize(nq.max(q.len()), 0.0);
+            q.get_mut(k)
+        }
+        (JointInitial::Coords { qd, .. }, true) => {
+            qd.resize(dof.max(qd.len()), 0.0);
+            qd.get_mut(k)
+        }
+        (JointInitial::Spherical { quat, .. }, false) => quat.get_mut(k),
+        (JointInitial::Spherical { w, .. }, true) => w.get_mut(k),
+    };
+    *slot.ok_or_else(|| format!("joint '{}' has no coordinate {}", j.name, k + 1))? = value;
+    Ok(())
+}
+
+/// Sets a parameter in `def`/`settings` (before the model is built). `inertia[i,j]` sets `[i,j]`
+/// and `[j,i]`; masses must be positive, damping and stiffness non-negative, the order 2 or 4.
+///
+/// # Errors
+/// A message for non-finite or out-of-range values and for accessors that are not parameters.
+pub fn write_param(
+    acc: Accessor,
+    def: &mut ModelDef,
+    settings: &mut SolverSettings,
+    value: f64,
+) -> Result<(), String> {
+    if !value.is_finite() {
+        return Err(format!("value {value} is not finite"));
+    }
+    let nonneg = |what: &str| {
+        if value >= 0.0 {
+            Ok(())
+        } else {
+            Err(format!("{what} must be >= 0 (got {value})"))
+        }
+    };
+    match acc {
+        Accessor::Gravity(i) => *def.gravity.get_mut(i).ok_or("no such gravity component")? = value,
+        Accessor::Mass(b) => {
+            if value <= 0.0 {
+                return Err(format!("mass must be > 0 (got {value})"));
+            }
+            def.bodies.get_mut(b).ok_or("no such body")?.mass = value;
+        }
+        Accessor::Inertia { body, i, j } => {
+            let b = def.bodies.get_mut(body).ok_or("no such body")?;
+            if i > 2 || j > 2 {
+                return Err("inertia index out of range".into());
+            }
+            b.inertia[(i, j)] = value;
+            b.inertia[(j, i)] = value;
+        }
+        Accessor::Q0 { joint, k } => set_initial(def, joint, k, false, value)?,
+        Accessor::Qd0 { joint, k } => set_initial(def, joint, k, true, value)?,
+        Accessor::Damping(j) => {
+            nonneg("damping")?;
+            def.joints.get_mut(j).ok_or("no such joint")?.damping = value;
+        }
+        Accessor::Stiffness(j) => {
+            nonneg("stiffness")?;
+            def.joints.get_mut(j).ok_or("no such joint")?.stiffness = value;
+        }
+        Accessor::MaxStep => {
+            if value <= 0.0 {
+                return Err(format!("solver.max_step must be > 0 (got {value})"));
+            }
+            settings.max_step = value;
+        }
+        Accessor::Tolerance => {
+            if !(value > 0.0 && value < 1e-3) {
+                return Err(format!(
+                    "solver.tolerance must be in (0, 1e-3) (got {value})"
+                ));
+            }
+            settings.tolerance = value;
+        }
+        Accessor::Order => {
+            settings.order = match value {
+                2.0 => 2,
+                4.0 => 4,
+                _ => return Err(format!("solver.order must be 2 or 4 (got {value})")),
+            }
+        }
+        _ => return Err("not a parameter".into()),
+    }
+    Ok(())
+}

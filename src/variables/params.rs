@@ -1,0 +1,146 @@
+//! Parameters of the variable table: gravity, bodies, joint initial values, damping and
+//! stiffness, solver settings.
+
+use super::table::{coord_words, coords, index, Builder, Coord, XYZ};
+use super::{Accessor, Causality, Variability};
+use crate::mechanics::{JointDef, JointInitial, JointType, ModelDef, SolverSettings};
+
+fn initial_value(j: &JointDef, k: usize, rate: bool) -> f64 {
+    match (&j.initial, rate) {
+        (JointInitial::Coords { q, .. }, false) => q.get(k).copied().unwrap_or(0.0),
+        (JointInitial::Coords { qd, .. }, true) => qd.get(k).copied().unwrap_or(0.0),
+        (JointInitial::Spherical { quat, .. }, false) => quat.get(k).copied().unwrap_or(0.0),
+        (JointInitial::Spherical { w, .. }, true) => w.get(k).copied().unwrap_or(0.0),
+    }
+}
+
+fn joint_parameters(b: &mut Builder, joint: usize, j: &JointDef) {
+    let n = &j.name;
+    if j.kind == JointType::Fixed {
+        return;
+    }
+    // initial values: tree joints only (a loop-closing joint's state follows from the tree)
+    if !j.loop_closing {
+        if j.kind == JointType::Spherical {
+            for (k, c) in ["w", "x", "y", "z"].iter().enumerate() {
+                let v = initial_value(j, k, false);
+                b.fixed(format!("joint.{n}.q0[{}]", k + 1), v, Some("1"), format!("initial orientation of joint {n}'s child frame relative to its joint frame, quaternion component {c}"), Accessor::Q0 { joint, k });
+            }
+            for (k, c) in XYZ.iter().enumerate() {
+                let v = initial_value(j, k, true);
+                b.fixed(format!("joint.{n}.qd0[{}]", k + 1), v, Some("rad/s"), format!("initial relative angular velocity of joint {n}, {c} component, child frame"), Accessor::Qd0 { joint, k });
+            }
+        } else {
+            let cs = coords(j.kind);
+            for (k, c) in cs.iter().enumerate() {
+                let unit = if *c == Coord::Angle { "rad" } else { "m" };
+                b.fixed(
+                    format!("joint.{n}.q0{}", index(k, cs.len())),
+                    initial_value(j, k, false),
+                    Some(unit),
+                    format!("initial value of joint {n}'s {}", coord_words(j.kind, k)),
+                    Accessor::Q0 { joint, k },
+                );
+            }
+            for (k, c) in cs.iter().enumerate() {
+                let unit = if *c == Coord::Angle { "rad/s" } else { "m/s" };
+                b.fixed(
+                    format!("joint.{n}.qd0{}", index(k, cs.len())),
+                    initial_value(j, k, true),
+                    Some(unit),
+                    format!("initial rate of joint {n}'s {}", coord_words(j.kind, k)),
+                    Accessor::Qd0 { joint, k },
+                );
+            }
+        }
+    }
+    let (damping_unit, stiffness_unit, per) = match j.kind {
+        JointType::Prismatic => (Some("N.s/m"), Some("N/m"), "N.s/m"),
+        JointType::Cylindrical | JointType::Planar => {
+            (None, None, "N.m.s/rad on angles, N.s/m on slides")
+        }
+        _ => (Some("N.m.s"), Some("N.m"), "N.m.s/rad"),
+    };
+    let tunable = |b: &mut Builder, name: String, v: f64, unit, d: String, acc| {
+        b.push(
+            name,
+            Causality::Parameter,
+            Variability::Tunable,
+            Some(v),
+            unit,
+            d,
+            acc,
+        )
+    };
+    tunable(
+        b,
+        format!("joint.{n}.damping"),
+        j.damping,
+        damping_unit,
+        format!("viscous damping of joint {n} on each coordinate ({per})"),
+        Accessor::Damping(joint),
+    );
+    if j.kind != JointType::Spherical {
+        let per = per.replace(".s", "");
+        tunable(
+            b,
+            format!("joint.{n}.stiffness"),
+            j.stiffness,
+            stiffness_unit,
+            format!("linear stiffness of joint {n} about q = 0 on each coordinate ({per})"),
+            Accessor::Stiffness(joint),
+        );
+    }
+}
+
+pub(super) fn parameters(b: &mut Builder, def: &ModelDef, settings: &SolverSettings) {
+    for (i, c) in XYZ.iter().enumerate() {
+        b.fixed(
+            format!("gravity[{}]", i + 1),
+            def.gravity[i],
+            Some("m/s2"),
+            format!("gravitational acceleration, {c} component, world frame"),
+            Accessor::Gravity(i),
+        );
+    }
+    for (body, bd) in def.bodies.iter().enumerate() {
+        let n = &bd.name;
+        b.fixed(
+            format!("body.{n}.mass"),
+            bd.mass,
+            Some("kg"),
+            format!("mass of body {n}"),
+            Accessor::Mass(body),
+        );
+        for i in 0..3 {
+            for j in 0..3 {
+                b.fixed(format!("body.{n}.inertia[{},{}]", i + 1, j + 1), bd.inertia[(i, j)], Some("kg.m2"), format!("inertia tensor of body {n} about its centre of mass, body axes, row {} column {} (setting it sets its transpose too)", i + 1, j + 1), Accessor::Inertia { body, i, j });
+            }
+        }
+    }
+    for (joint, j) in def.joints.iter().enumerate() {
+        joint_parameters(b, joint, j);
+    }
+    b.fixed(
+        "solver.max_step".into(),
+        settings.max_step,
+        Some("s"),
+        "largest internal time step; a communication step takes ceil(H / max_step) equal sub-steps"
+            .into(),
+        Accessor::MaxStep,
+    );
+    b.fixed(
+        "solver.tolerance".into(),
+        settings.tolerance,
+        Some("1"),
+        "Newton tolerance on the scaled residual".into(),
+        Accessor::Tolerance,
+    );
+    b.fixed(
+        "solver.order".into(),
+        f64::from(settings.order),
+        None,
+        "order of the time integrator: 2 (energy-momentum midpoint) or 4 (triple jump)".into(),
+        Accessor::Order,
+    );
+}
