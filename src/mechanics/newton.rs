@@ -39,6 +39,10 @@ pub(crate) struct Work {
     pub ang: Vec<f64>,
     /// Accumulated work at the stage start, J.
     pub work: f64,
+    /// Mean rates of the last stage `(Δφ/h, θ/h)`, 6 per body (predictor history).
+    pub hist: Vec<f64>,
+    /// Size of the last stage, s (0: no history).
+    pub hprev: f64,
     /// Newton iterate.
     pub q: Vec<f64>,
     /// Increment `q − qₙ`, kept separately so that velocities do not suffer the cancellation
@@ -87,6 +91,8 @@ impl Work {
             lam: vec![0.0; nr],
             ang: model.angles0.clone(),
             work: 0.0,
+            hist: vec![0.0; 6 * nb],
+            hprev: 0.0,
             q: model.q0.clone(),
             dq: vec![0.0; 12 * nb],
             qbar: model.q0.clone(),
