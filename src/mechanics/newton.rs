@@ -408,38 +408,53 @@ pub(crate) fn evaluate(
             let mut grad = [Vec3::zeros(); 8];
             let mut add_row = |row: &DotRow,
                                coef: f64,
-                               rn: &mut [f64],
+                               fa: &mut [Vec3; 4],
+                               fb: &mut [Vec3; 4],
                                cb: &mut [[f64; 16]],
                                cab: &mut [f64; 16]| {
                 row.gradient(&qa_bar, &qb_bar, &mut grad);
-                if let Some(a) = a {
-                    for k in 0..4 {
-                        let v = read3(rn, 12 * a + 3 * k) + grad[k] * coef;
-                        write3(rn, 12 * a + 3 * k, &v);
-                    }
-                }
                 for k in 0..4 {
-                    let v = read3(rn, 12 * bb + 3 * k) + grad[4 + k] * coef;
-                    write3(rn, 12 * bb + 3 * k, &v);
+                    fa[k] += grad[k] * coef;
+                    fb[k] += grad[4 + k] * coef;
                 }
                 if jac {
-                    let s = row.hessian();
+                    // ½ coef S with S = αβᵀ + βαᵀ, skipping the zero coefficients
+                    let (al, be) = (row.u.coeffs(), row.w.coeffs());
                     let hc = 0.5 * coef;
-                    for n in 0..4 {
-                        for m in 0..4 {
-                            cb[bb][4 * n + m] += hc * s[4 + n][4 + m];
-                            if let Some(a) = a {
-                                cb[a][4 * n + m] += hc * s[n][m];
-                                cab[4 * n + m] += hc * s[n][4 + m];
+                    for n in 0..8 {
+                        let (an, bn) = (al[n] * hc, be[n] * hc);
+                        if an == 0.0 && bn == 0.0 {
+                            continue;
+                        }
+                        for m in 0..8 {
+                            let v = an * be[m] + bn * al[m];
+                            if v == 0.0 {
+                                continue;
+                            }
+                            match (n < 4, m < 4) {
+                                (false, false) => cb[bb][4 * (n - 4) + m - 4] += v,
+                                (true, true) => {
+                                    if let Some(a) = a {
+                                        cb[a][4 * n + m] += v;
+                                    }
+                                }
+                                (true, false) => {
+                                    if a.is_some() {
+                                        cab[4 * n + m - 4] += v;
+                                    }
+                                }
+                                (false, true) => {}
                             }
                         }
                     }
                 }
                 grad
             };
+            let mut fa = [Vec3::zeros(); 4];
+            let mut fb = [Vec3::zeros(); 4];
             for (k, row) in jt.rows.iter().enumerate() {
                 let mu = ws.mu[jt.row0 + k];
-                let grad = add_row(row, mu, &mut ws.rn, &mut ws.cbody, &mut cab);
+                let grad = add_row(row, mu, &mut fa, &mut fb, &mut ws.cbody, &mut cab);
                 let gv = row.eval(&qa, &qb);
                 res = res.max(gv.abs() * gscale);
                 if model.dense {
@@ -478,7 +493,7 @@ pub(crate) fn evaluate(
                         let ds = s1 - s0;
                         let coef = act - 0.5 * k_s * (s0 + s1) - c_d * ds / h;
                         work += act * ds - c_d * ds * ds / h;
-                        let grad = add_row(row, -hh * coef, &mut ws.rn, &mut ws.cbody, &mut cab);
+                        let grad = add_row(row, -hh * coef, &mut fa, &mut fb, &mut ws.cbody, &mut cab);
                         if jac && (k_s != 0.0 || c_d != 0.0) {
                             // rank-one term d(−hh·coef)/dx = hh (k/2 + c/h) ∇s(q) Q
                             let kap = hh * (0.5 * k_s + c_d / h);
@@ -584,6 +599,17 @@ pub(crate) fn evaluate(
                         }
                     }
                 }
+            }
+            // node forces of this joint into R̃
+            if let Some(a) = a {
+                for k in 0..4 {
+                    let v = read3(&ws.rn, 12 * a + 3 * k) + fa[k];
+                    write3(&mut ws.rn, 12 * a + 3 * k, &v);
+                }
+            }
+            for k in 0..4 {
+                let v = read3(&ws.rn, 12 * bb + 3 * k) + fb[k];
+                write3(&mut ws.rn, 12 * bb + 3 * k, &v);
             }
             if jac {
                 for r in 0..36 {
