@@ -14,6 +14,8 @@
 //! `Σᵢ d̄ᵢ × ½ m × d̄ⁱ = m`). Jacobian: `P(q̄)ᵀ K̃ Q + ½ Σᵢ hat(R̃_{dᵢ}) hat(dᵢ)` with
 //! `K̃ = M + ½ Σ μ_k H_k − (h²/2) ∂F/∂q`, multiplier columns `P(q̄)ᵀ ∇g(q̄)`, joint rows
 //! `∇g(q) Q`, `Q = [I 0; 0 −d̂₁; 0 −d̂₂; 0 −d̂₃]`.
+// index loops over coupled fixed-size arrays read closer to the formulas than iterator chains
+#![allow(clippy::needless_range_loop)]
 
 use super::assemble::{read3, write3};
 use super::constraint::{nodes, DotRow, Nodes};
@@ -493,7 +495,8 @@ pub(crate) fn evaluate(
                         let ds = s1 - s0;
                         let coef = act - 0.5 * k_s * (s0 + s1) - c_d * ds / h;
                         work += act * ds - c_d * ds * ds / h;
-                        let grad = add_row(row, -hh * coef, &mut fa, &mut fb, &mut ws.cbody, &mut cab);
+                        let grad =
+                            add_row(row, -hh * coef, &mut fa, &mut fb, &mut ws.cbody, &mut cab);
                         if jac && (k_s != 0.0 || c_d != 0.0) {
                             // rank-one term d(−hh·coef)/dx = hh (k/2 + c/h) ∇s(q) Q
                             let kap = hh * (0.5 * k_s + c_d / h);

@@ -7,6 +7,8 @@
 //! `D_c` (diagonal block, `n_c × n_c`), `U_c` (rows of supernode `c`, columns `x_p`, `n_c × 6`)
 //! and `L_c` (body rows of `p`, columns of supernode `c`, `6 × n_c`). Eliminating leaves to
 //! root costs O(N) with fixed-size blocks (at most 12 × 12).
+// index loops over coupled fixed-size arrays read closer to the formulas than iterator chains
+#![allow(clippy::needless_range_loop)]
 
 /// Largest supernode size: 6 body unknowns + 6 joint rows.
 pub const NMAX: usize = 12;

@@ -6,6 +6,8 @@
 //! Order 4 is `Φ_{γ₁h} ∘ Φ_{γ₂h} ∘ Φ_{γ₁h}` with `γ₁ = 1/(2 − 2^{1/3})`, `γ₂ = 1 − 2γ₁`
 //! (theory.md §4.8); every stage is itself an EM step, so the conservation laws hold exactly.
 //! All work happens on workspace copies; the state is written only after every stage converged.
+// index loops over coupled fixed-size arrays read closer to the formulas than iterator chains
+#![allow(clippy::needless_range_loop)]
 
 use super::assemble::{read3, write3};
 use super::error::StepError;
@@ -140,7 +142,11 @@ fn stage(model: &Model, ws: &mut Work, held: &Held, h: f64) -> Result<StepStats,
         // Cayley vector θ = h ω̄ ↔ rotation angle 2 atan(|θ|/2)
         let th = wbar * h;
         let n = th.norm();
-        let rv = if n > 0.0 { th * (2.0 * (0.5 * n).atan() / n) } else { th };
+        let rv = if n > 0.0 {
+            th * (2.0 * (0.5 * n).atan() / n)
+        } else {
+            th
+        };
         let em1 = expm1_so3(&rv);
         for i in 0..3 {
             let dn = read3(&ws.qn, o + 3 + 3 * i);
