@@ -320,6 +320,8 @@ pub(crate) fn evaluate(
     jac: bool,
     work_out: &mut f64,
 ) -> Norms {
+    // the final pass (no Jacobian) only needs a, θ, the unwrapped angles and the work
+    let final_pass = !jac;
     let nb = model.bodies.len();
     let hh = 0.5 * h * h;
     let g = model.def().gravity;
@@ -454,7 +456,7 @@ pub(crate) fn evaluate(
             };
             let mut fa = [Vec3::zeros(); 4];
             let mut fb = [Vec3::zeros(); 4];
-            for (k, row) in jt.rows.iter().enumerate() {
+            for (k, row) in jt.rows.iter().enumerate().filter(|_| !final_pass) {
                 let mu = ws.mu[jt.row0 + k];
                 let grad = add_row(row, mu, &mut fa, &mut fb, &mut ws.cbody, &mut cab);
                 let gv = row.eval(&qa, &qb);
@@ -519,9 +521,14 @@ pub(crate) fn evaluate(
                         let th_b = read3(&ws.theta, 3 * bb);
                         let th_a = a.map_or(Vec3::zeros(), |a| read3(&ws.theta, 3 * a));
                         let delta = nbar.dot(&(th_b - th_a));
-                        let raw = super::assemble::turn_angle(model, j, dk, &qa, &qb);
+                        // the angle is needed for springs and, at the end, for the memory
                         let t0 = ws.ang[turn];
-                        let t1 = super::assemble::unwrap(t0, raw);
+                        let t1 = if k_s != 0.0 || final_pass {
+                            let raw = super::assemble::turn_angle(model, j, dk, &qa, &qb);
+                            super::assemble::unwrap(t0, raw)
+                        } else {
+                            t0
+                        };
                         ws.ang1[turn] = t1;
                         let spring = if delta.abs() > 1e-13 * (1.0 + t0.abs() + t1.abs()) {
                             -0.5 * k_s * (t1 * t1 - t0 * t0) / delta

@@ -162,6 +162,7 @@ fn stage(model: &Model, ws: &mut Work, held: &Held, h: f64) -> Result<StepStats,
     let maxit = model.settings().max_iterations;
     let mut work = 0.0;
     let mut it = 0;
+    let mut last_res = 0.0;
     loop {
         it += 1;
         let n = evaluate(model, ws, held, h, true, &mut work);
@@ -175,6 +176,7 @@ fn stage(model: &Model, ws: &mut Work, held: &Held, h: f64) -> Result<StepStats,
         if !upd.is_finite() {
             return Err(StepError::NonFinite("state"));
         }
+        last_res = n.res.max(upd);
         if upd <= tol && n.res <= tol {
             break;
         }
@@ -186,8 +188,8 @@ fn stage(model: &Model, ws: &mut Work, held: &Held, h: f64) -> Result<StepStats,
         }
     }
     // work and unwrapped angles at the converged iterate
-    let n = evaluate(model, ws, held, h, false, &mut work);
-    if !n.res.is_finite() {
+    let _ = evaluate(model, ws, held, h, false, &mut work);
+    if !work.is_finite() || ws.acc.iter().any(|x| !x.is_finite()) {
         return Err(StepError::NonFinite("state"));
     }
     // v_{n+1} = vₙ + 2a/h in double-double (two-sum), a from the final evaluation
@@ -215,7 +217,7 @@ fn stage(model: &Model, ws: &mut Work, held: &Held, h: f64) -> Result<StepStats,
     ws.hprev = h;
     Ok(StepStats {
         iterations: it,
-        residual: n.res,
+        residual: last_res,
     })
 }
 
