@@ -7,6 +7,11 @@
 //! `D_c` (diagonal block, `n_c × n_c`), `U_c` (rows of supernode `c`, columns `x_p`, `n_c × 6`)
 //! and `L_c` (body rows of `p`, columns of supernode `c`, `6 × n_c`). Eliminating leaves to
 //! root costs O(N) with fixed-size blocks (at most 12 × 12).
+//!
+//! Systems with loop-closing joints use one dense LU with partial pivoting over all unknowns
+//! (`6 N + active rows`, preallocated in the workspace): O(N³), meant for the small closed
+//! linkages (four-bars, parallel mechanisms) this tool targets; redundant loop rows are dropped
+//! at set-up so that the matrix stays regular.
 // index loops over coupled fixed-size arrays read closer to the formulas than iterator chains
 #![allow(clippy::needless_range_loop)]
 

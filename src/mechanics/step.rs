@@ -162,7 +162,7 @@ fn stage(model: &Model, ws: &mut Work, held: &Held, h: f64) -> Result<StepStats,
     let maxit = model.settings().max_iterations;
     let mut work = 0.0;
     let mut it = 0;
-    let mut last_res = 0.0;
+    let mut last_res: f64;
     loop {
         it += 1;
         let n = evaluate(model, ws, held, h, true, &mut work);
