@@ -459,7 +459,9 @@ pub(crate) fn evaluate(
             for (k, row) in jt.rows.iter().enumerate().filter(|_| !final_pass) {
                 let mu = ws.mu[jt.row0 + k];
                 let grad = add_row(row, mu, &mut fa, &mut fb, &mut ws.cbody, &mut cab);
-                let gv = row.eval(&qa, &qb);
+                // u, w at the iterate once: the value and the gradient ∇g(q)
+                let (u1, w1) = (row.u.eval(&qa, &qb), row.w.eval(&qa, &qb));
+                let gv = u1.dot(&w1) - row.offset;
                 res = res.max(gv.abs() * gscale);
                 if model.dense {
                     ws.drhs[6 * nb + jt.row0 + k] = -gv;
@@ -473,8 +475,8 @@ pub(crate) fn evaluate(
                         sink.body_mu(a, j, k, &project(&grad[..4], &dbar_a));
                     }
                     // joint rows ∇g(q) Q
-                    let mut g1 = [Vec3::zeros(); 8];
-                    row.gradient(&qa, &qb, &mut g1);
+                    let (al, be) = (row.u.coeffs(), row.w.coeffs());
+                    let g1: [Vec3; 8] = std::array::from_fn(|n| w1 * al[n] + u1 * be[n]);
                     sink.mu_body(j, k, bb, &row_q(&g1[4..], &d_b));
                     if let Some(a) = a {
                         sink.mu_body(j, k, a, &row_q(&g1[..4], &d_a));
