@@ -13,7 +13,15 @@
 //! with consistent torques `m_b` entering the projected moment row directly (for any basis
 //! `Σᵢ d̄ᵢ × ½ m × d̄ⁱ = m`). Jacobian: `P(q̄)ᵀ K̃ Q + ½ Σᵢ hat(R̃_{dᵢ}) hat(dᵢ)` with
 //! `K̃ = M + ½ Σ μ_k H_k − (h²/2) ∂F/∂q`, multiplier columns `P(q̄)ᵀ ∇g(q̄)`, joint rows
-//! `∇g(q) Q`, `Q = [I 0; 0 −d̂₁; 0 −d̂₂; 0 −d̂₃]`.
+//! `∇g(q) Q`, `Q = [I 0; 0 −d̂₁; 0 −d̂₂; 0 −d̂₃]`. Exact for inertia, constraints, gravity,
+//! body loads, slide forces/springs/dampers and joint torques through `n̄(q̄)` (checked against
+//! finite differences in the unit test); the angle spring and the rotational dampers use the
+//! leading-order derivative `∂τ/∂θ = −(k/2 + c/h) n̄ᵀ` (the discrete increment `δ` is not
+//! differentiated through the reciprocal basis), which only slows convergence, never the result.
+//!
+//! Round-off: the velocity recursion `v_{n+1} = vₙ + 2a/h` (`a = Δq − h vₙ`, one fused
+//! rounding) is carried in double-double (`Work::vlo`), so that the energy does not drift by a
+//! few ulps per step; conservation over 10⁴ steps stays at 1e-14–1e-13.
 // index loops over coupled fixed-size arrays read closer to the formulas than iterator chains
 #![allow(clippy::needless_range_loop)]
 
