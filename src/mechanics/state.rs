@@ -111,7 +111,8 @@ impl State {
         self.stiffness[j]
     }
 
-    /// Sets the stiffness of joint `j` (the energy output follows the new value).
+    /// Sets the stiffness of joint `j` (outputs, including the spring energy, are recomputed at
+    /// the next step or restore).
     pub fn set_stiffness(&mut self, j: usize, k: f64) {
         self.stiffness[j] = k;
     }
