@@ -131,9 +131,8 @@ def run_fmu(model, spec_path, a, order, workdir):
             for rs, inp in torque:
                 on = inp["t_start"] - 1e-9 <= t < inp["t_end"] - 1e-9
                 fmu.setReal(rs, [float(x) if on else 0.0 for x in inp["torque"]])
-            status = fmu.doStep(currentCommunicationPoint=t, communicationStepSize=a.h)
-            if status != 0:
-                raise SystemExit(f"doStep returned {status} at t = {t}")
+            # fmpy raises on any status other than fmi2OK
+            fmu.doStep(currentCommunicationPoint=t, communicationStepSize=a.h)
             t = (k * nsub + i + 1) * a.h
         wall += time.perf_counter() - t0
         rows.append(sample((k + 1) * a.dt_out))
