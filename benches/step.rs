@@ -1,8 +1,45 @@
-//! Criterion benches of one step (placeholder; the mechanics work fills it).
-use criterion::{criterion_group, criterion_main, Criterion};
+//! Criterion benches of one EM step (order 2, h = 1e-3): the peers' double pendulum, heavy top
+//! and chainN (N = 10, 100, 1000). Run: `cargo bench --bench step -- --warm-up-time 1
+//! --measurement-time 3`.
+use criterion::{criterion_group, criterion_main, BenchmarkId, Criterion};
+use triad::mechanics::{step, Model, ModelDef, SolverSettings, State};
+
+#[path = "../tests/common/mod.rs"]
+#[allow(dead_code, clippy::all)]
+mod common;
+
+fn setup(def: &ModelDef) -> (Model, State) {
+    let s = SolverSettings { max_step: 1e-3, order: 2, tolerance: 1e-10, max_iterations: 20 };
+    let m = Model::new(def, s).expect("model");
+    let st = State::new(&m);
+    (m, st)
+}
 
 fn bench(c: &mut Criterion) {
-    c.bench_function("noop", |b| b.iter(|| 1 + 1));
+    let mut g = c.benchmark_group("step");
+    let cases: Vec<(String, ModelDef)> = vec![
+        ("double_pendulum".into(), common::double_pendulum()),
+        ("heavy_top".into(), common::heavy_top()),
+        ("chain10".into(), common::chain(10)),
+        ("chain100".into(), common::chain(100)),
+        ("chain1000".into(), common::chain(1000)),
+    ];
+    for (name, def) in cases {
+        let (m, mut s) = setup(&def);
+        // a short run-in so that the state is generic (moving, multipliers warm)
+        for _ in 0..20 {
+            step(&m, &mut s, 1e-3).expect("step");
+        }
+        g.bench_with_input(BenchmarkId::from_parameter(&name), &name, |b, _| {
+            b.iter(|| step(&m, &mut s, 1e-3).expect("step"));
+        });
+        let mut it = 0;
+        for _ in 0..100 {
+            it += step(&m, &mut s, 1e-3).expect("step").iterations;
+        }
+        eprintln!("{name}: {:.2} Newton iterations per step", it as f64 / 100.0);
+    }
+    g.finish();
 }
 
 criterion_group!(benches, bench);

@@ -11,11 +11,18 @@
 //! constraints, computes the initial state), `State::new(&model)`, then `step(&model, &mut state, h)`
 //! as often as needed; `state.outputs()` holds every output after each step.
 
+mod assemble;
+pub mod body;
 pub mod constraint;
 pub mod def;
 mod error;
+pub mod joint;
+pub mod kinematics;
+pub mod loops;
 mod model;
+mod newton;
 mod outputs;
+mod solver;
 mod state;
 mod step;
 
@@ -27,4 +34,4 @@ pub use error::{ModelError, StepError};
 pub use model::{InputSlot, Model};
 pub use outputs::{BodyOutput, JointOutput, Outputs};
 pub use state::State;
-pub use step::{step, StepStats};
+pub use step::{gamma1, step, StepStats};

@@ -1,10 +1,14 @@
 //! The immutable model: bodies, joint rows, loads, tree order, initial state.
 //!
-//! PLACEHOLDER written at project set-up: the public items (names and signatures) are the
-//! contract used by `sim`, `variables` and `fmu`; the mechanics work replaces the bodies.
+//! Built once by [`Model::new`]; everything `step` needs that does not change during a run lives
+//! here (the mass data, the active constraint rows of every joint, the joint coordinates used by
+//! loads, the tree order used by the block elimination, the initial `q0`, `v0`).
 
+use super::constraint::{DotRow, LinVec};
 use super::def::{ModelDef, SolverSettings};
 use super::error::ModelError;
+use super::joint::JointGeom;
+use crate::math::{Mat3, Vec3};
 
 /// One scalar input of the model, in the order of `State::inputs`.
 ///
@@ -42,6 +46,52 @@ pub enum InputSlot {
     },
 }
 
+/// Mass data of one body (body axes, about the centre of mass).
+#[derive(Clone, Debug)]
+pub(crate) struct BodyRt {
+    /// Mass, kg.
+    pub mass: f64,
+    /// Euler tensor `E = ½ tr(J) I − J`, kg·m².
+    pub e: Mat3,
+    /// Centre of mass in the body frame, m.
+    pub com: Vec3,
+}
+
+/// A joint coordinate that loads act on.
+#[derive(Clone, Copy, Debug)]
+pub(crate) enum DofRt {
+    /// Translational invariant `s = row(q)` (m); its midpoint gradient is an exact discrete
+    /// gradient.
+    Slide(DotRow),
+    /// Rotation about the world axis `n(q)` (unit at the nodes).
+    Turn(LinVec),
+}
+
+/// A joint as the step sees it.
+#[derive(Clone, Debug)]
+pub(crate) struct JointRt {
+    /// Parent body (`None`: world).
+    pub parent: Option<usize>,
+    /// Child body.
+    pub child: usize,
+    /// Rows kept in the Newton solve.
+    pub rows: Vec<DotRow>,
+    /// Rows dropped as redundant (still reported in the residual).
+    pub dropped: Vec<DotRow>,
+    /// Offset of this joint's first active row in the global multiplier vector.
+    pub row0: usize,
+    /// Coordinates that carry actuators, springs and dampers, in coordinate order.
+    pub dofs: Vec<DofRt>,
+    /// Parent joint-frame axes (world-frame linear vectors) of a spherical joint.
+    pub sph_axes: Option<[LinVec; 3]>,
+    /// Index in the input vector of the first actuator input, if actuated.
+    pub input: Option<usize>,
+    /// Offset of this joint's turn dofs in the unwrapping memory.
+    pub turn0: usize,
+    /// The joint's geometry (coordinates and rates for outputs and unwrapping).
+    pub geom: JointGeom,
+}
+
 /// A built, immutable multibody model.
 #[derive(Clone, Debug)]
 pub struct Model {
@@ -49,6 +99,40 @@ pub struct Model {
     settings: SolverSettings,
     inputs: Vec<InputSlot>,
     notes: Vec<String>,
+    pub(crate) bodies: Vec<BodyRt>,
+    pub(crate) joints: Vec<JointRt>,
+    /// Bodies, parents before children.
+    pub(crate) order: Vec<usize>,
+    /// Tree parent of each body.
+    pub(crate) parent: Vec<Option<usize>>,
+    /// Tree joint of each body.
+    pub(crate) tree_joint: Vec<Option<usize>>,
+    /// Number of active joint rows.
+    pub(crate) nrows: usize,
+    /// Number of turn dofs (unwrapping memory length).
+    pub(crate) nturn: usize,
+    /// Use the dense solver (loop-closing joints present).
+    pub(crate) dense: bool,
+    /// Characteristic length for scaled norms, m.
+    pub(crate) lc: f64,
+    /// Initial coordinates (12 per body), world frame.
+    pub(crate) q0: Vec<f64>,
+    /// Initial velocities (12 per body), world frame.
+    pub(crate) v0: Vec<f64>,
+    /// Initial unwrapped turn angles, rad.
+    pub(crate) angles0: Vec<f64>,
+    /// (body, input index) of each body torque load.
+    pub(crate) body_torques: Vec<(usize, usize)>,
+    /// (body, input index) of each body force load.
+    pub(crate) body_forces: Vec<(usize, usize)>,
+    /// Test-only switch: naive torque representation `F_{d_i} = ½ m × d̄_i`.
+    pub(crate) naive_torque: bool,
+}
+
+/// Euler tensor of an inertia tensor: `E = ½ tr(J) I − J`.
+#[must_use]
+pub(crate) fn euler_tensor(j: &Mat3) -> Mat3 {
+    Mat3::identity() * (0.5 * j.trace()) - j
 }
 
 impl Model {
@@ -59,11 +143,13 @@ impl Model {
     /// [`ModelError`] for an inconsistent definition or a loop not closed at the start.
     pub fn new(def: &ModelDef, settings: SolverSettings) -> Result<Self, ModelError> {
         let mut inputs = Vec::new();
+        let mut joint_input = vec![None; def.joints.len()];
         for (j, joint) in def.joints.iter().enumerate() {
             if !joint.actuated {
                 continue;
             }
             use super::def::JointType as T;
+            let first = inputs.len();
             match joint.kind {
                 T::Revolute => inputs.push(InputSlot::JointTorque { joint: j, k: 0 }),
                 T::Prismatic => inputs.push(InputSlot::JointForce { joint: j }),
@@ -79,21 +165,102 @@ impl Model {
                 }
                 T::Planar | T::Fixed => {}
             }
+            if inputs.len() > first {
+                joint_input[j] = Some(first);
+            }
         }
+        let mut body_torques = Vec::new();
+        let mut body_forces = Vec::new();
         for load in &def.loads {
+            if load.body >= def.bodies.len() {
+                return Err(ModelError::Invalid(format!(
+                    "body load on unknown body {}",
+                    load.body
+                )));
+            }
             if load.torque {
+                body_torques.push((load.body, inputs.len()));
                 (0..3).for_each(|i| inputs.push(InputSlot::BodyTorque { body: load.body, i }));
             }
             if load.force {
+                body_forces.push((load.body, inputs.len()));
                 (0..3).for_each(|i| inputs.push(InputSlot::BodyForce { body: load.body, i }));
             }
         }
-        Ok(Self {
+        if !(settings.max_step.is_finite() && settings.max_step > 0.0) {
+            return Err(ModelError::Invalid(format!(
+                "max_step must be positive, got {}",
+                settings.max_step
+            )));
+        }
+        if settings.order != 2 && settings.order != 4 {
+            return Err(ModelError::Invalid(format!(
+                "order must be 2 or 4, got {}",
+                settings.order
+            )));
+        }
+        if !(settings.tolerance.is_finite() && settings.tolerance > 0.0)
+            || settings.max_iterations == 0
+        {
+            return Err(ModelError::Invalid(
+                "tolerance must be positive and max_iterations ≥ 1".into(),
+            ));
+        }
+        let mut bodies = Vec::with_capacity(def.bodies.len());
+        for b in &def.bodies {
+            // only J > 0 is needed: the projected iteration matrix carries P̄ᵀ M Q ≈ R J Rᵀ, so an
+            // indefinite Euler tensor (a body violating the triangle inequality, e.g. theory
+            // B1's J = (1, 1, 2.5)) still integrates
+            let e = euler_tensor(&b.inertia);
+            let sym =
+                (b.inertia - b.inertia.transpose()).abs().max() <= 1e-12 * b.inertia.abs().max();
+            let ok = b.mass > 0.0
+                && b.mass.is_finite()
+                && sym
+                && b.inertia
+                    .symmetric_eigenvalues()
+                    .iter()
+                    .all(|&x| x > 0.0 && x.is_finite());
+            if !ok {
+                return Err(ModelError::Invalid(format!(
+                    "body '{}': mass must be positive and the inertia symmetric positive definite",
+                    b.name
+                )));
+            }
+            bodies.push(BodyRt {
+                mass: b.mass,
+                e,
+                com: b.com,
+            });
+        }
+        let lc = bodies
+            .iter()
+            .map(|b| (b.e.trace().abs() / b.mass).sqrt() + b.com.norm())
+            .fold(0.0_f64, f64::max)
+            .max(1e-6);
+        let mut model = Self {
             def: def.clone(),
             settings,
             inputs,
             notes: Vec::new(),
-        })
+            bodies,
+            joints: Vec::new(),
+            order: Vec::new(),
+            parent: vec![None; def.bodies.len()],
+            tree_joint: vec![None; def.bodies.len()],
+            nrows: 0,
+            nturn: 0,
+            dense: false,
+            lc,
+            q0: vec![0.0; 12 * def.bodies.len()],
+            v0: vec![0.0; 12 * def.bodies.len()],
+            angles0: Vec::new(),
+            body_torques,
+            body_forces,
+            naive_torque: false,
+        };
+        super::assemble::build(&mut model, &joint_input)?;
+        Ok(model)
     }
 
     /// The definition this model was built from.
@@ -119,5 +286,36 @@ impl Model {
     #[must_use]
     pub fn notes(&self) -> &[String] {
         &self.notes
+    }
+
+    /// Appends a set-up note.
+    pub(crate) fn push_note(&mut self, note: String) {
+        self.notes.push(note);
+    }
+
+    /// Number of bodies.
+    #[must_use]
+    pub fn body_count(&self) -> usize {
+        self.bodies.len()
+    }
+
+    /// Number of joint constraint rows kept in the Newton solve (after dropping redundant rows).
+    #[must_use]
+    pub fn active_rows(&self) -> usize {
+        self.nrows
+    }
+
+    /// Whether the dense (loop) solver is used instead of the O(N) tree elimination.
+    #[must_use]
+    pub fn uses_dense_solver(&self) -> bool {
+        self.dense
+    }
+
+    /// Test-only: switches body torques to the naive director-force representation
+    /// `F_{d_i} = ½ m × d̄_i`, which violates the discrete angular-momentum balance (theory.md
+    /// §2.3). Never use outside tests.
+    #[doc(hidden)]
+    pub fn set_naive_torque(&mut self, naive: bool) {
+        self.naive_torque = naive;
     }
 }

@@ -43,3 +43,115 @@ pub struct Outputs {
     /// Largest constraint violation after the last step (internal and joint rows), 1 or m.
     pub constraint_residual: f64,
 }
+
+use super::assemble::read3;
+use super::constraint::Nodes;
+use super::model::{DofRt, Model};
+use super::newton::body_nodes;
+
+impl Outputs {
+    /// Outputs sized for `model` (values zero until [`update`] runs).
+    #[must_use]
+    pub(crate) fn for_model(model: &Model) -> Self {
+        Self {
+            bodies: vec![BodyOutput::default(); model.bodies.len()],
+            joints: model
+                .def()
+                .joints
+                .iter()
+                .map(|j| JointOutput {
+                    q: vec![0.0; j.kind.nq()],
+                    qd: vec![0.0; j.kind.dof()],
+                })
+                .collect(),
+            ..Self::default()
+        }
+    }
+}
+
+/// Recomputes every output from the nodal state (theory.md §4.7). Allocates nothing.
+pub(crate) fn update(
+    model: &Model,
+    q: &[f64],
+    v: &[f64],
+    angles: &[f64],
+    stiffness: &[f64],
+    work: f64,
+    out: &mut Outputs,
+) {
+    let g = model.def().gravity;
+    let mut energy = 0.0;
+    let mut p = Vec3::zeros();
+    let mut l = Vec3::zeros();
+    let mut resid = 0.0_f64;
+    for (b, br) in model.bodies.iter().enumerate() {
+        let qb = body_nodes(q, b);
+        let vb = body_nodes(v, b);
+        let rot = Mat3::from_columns(&[qb[1], qb[2], qb[3]]);
+        let o = &mut out.bodies[b];
+        o.rot = rot;
+        o.r = qb[0] - rot * br.com;
+        o.v = vb[0] - (vb[1] * br.com.x + vb[2] * br.com.y + vb[3] * br.com.z);
+        o.w = (qb[1].cross(&vb[1]) + qb[2].cross(&vb[2]) + qb[3].cross(&vb[3])) * 0.5;
+        // kinetic + gravity energy, momenta (director momenta pᵢ = Σⱼ Eᵢⱼ ḋⱼ)
+        let pphi = vb[0] * br.mass;
+        energy += 0.5 * pphi.dot(&vb[0]) - br.mass * g.dot(&qb[0]);
+        p += pphi;
+        l += qb[0].cross(&pphi);
+        for i in 0..3 {
+            let pi = vb[1] * br.e[(i, 0)] + vb[2] * br.e[(i, 1)] + vb[3] * br.e[(i, 2)];
+            energy += 0.5 * pi.dot(&vb[i + 1]);
+            l += qb[i + 1].cross(&pi);
+        }
+        // internal constraints ½(dᵢ·dᵢ − 1), dᵢ·dⱼ
+        for i in 0..3 {
+            resid = resid.max((0.5 * (qb[i + 1].norm_squared() - 1.0)).abs());
+            for j in i + 1..3 {
+                resid = resid.max(qb[i + 1].dot(&qb[j + 1]).abs());
+            }
+        }
+    }
+    let zero: Nodes = [Vec3::zeros(); 4];
+    for (j, jt) in model.joints.iter().enumerate() {
+        let qa = jt.parent.map_or(zero, |a| body_nodes(q, a));
+        let qb = body_nodes(q, jt.child);
+        for row in jt.rows.iter().chain(jt.dropped.iter()) {
+            resid = resid.max(row.eval(&qa, &qb).abs());
+        }
+        // joint springs
+        let k = stiffness[j];
+        let mut turn = jt.turn0;
+        for dof in &jt.dofs {
+            match dof {
+                DofRt::Slide(row) => {
+                    let s = row.eval(&qa, &qb);
+                    energy += 0.5 * k * s * s;
+                }
+                DofRt::Turn(_) => {
+                    energy += 0.5 * k * angles[turn] * angles[turn];
+                    turn += 1;
+                }
+            }
+        }
+        let va = jt.parent.map_or(zero, |a| body_nodes(v, a));
+        let vb = body_nodes(v, jt.child);
+        let jo = &mut out.joints[j];
+        super::assemble::joint_outputs(
+            model,
+            j,
+            &qa,
+            &qb,
+            &va,
+            &vb,
+            &angles[jt.turn0..],
+            &mut jo.q,
+            &mut jo.qd,
+        );
+    }
+    let _ = read3;
+    out.energy = energy;
+    out.work = work;
+    out.p = p;
+    out.l = l;
+    out.constraint_residual = resid;
+}

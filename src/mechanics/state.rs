@@ -1,20 +1,33 @@
 //! The mutable state: time, coordinates, velocities, inputs, tunable parameters, outputs and the
 //! preallocated Newton workspace.
-//!
-//! PLACEHOLDER written at project set-up: the public items are the contract; the mechanics work
-//! replaces the bodies.
 
 use super::model::Model;
+use super::newton::Work;
 use super::outputs::Outputs;
 
 /// State of one simulation run. `Clone` is a complete snapshot.
 #[derive(Clone, Debug)]
 pub struct State {
-    t: f64,
-    inputs: Vec<f64>,
-    damping: Vec<f64>,
-    stiffness: Vec<f64>,
-    outputs: Outputs,
+    /// Time, s.
+    pub(crate) t: f64,
+    /// Coordinates `[φ, d1, d2, d3]` per body (12 per body), world frame, m and 1.
+    pub(crate) q: Vec<f64>,
+    /// Velocities (12 per body), world frame, m/s and 1/s.
+    pub(crate) v: Vec<f64>,
+    /// Low part of the velocities (double-double with `v`), 12 per body.
+    pub(crate) v_lo: Vec<f64>,
+    /// Multiplier memory `λ/2` per active joint row (Newton warm start).
+    pub(crate) lam: Vec<f64>,
+    /// Unwrapped turn angles (one per rotational joint coordinate), rad.
+    pub(crate) angles: Vec<f64>,
+    /// Accumulated work of inputs minus damping dissipation, J.
+    pub(crate) work: f64,
+    pub(crate) inputs: Vec<f64>,
+    pub(crate) damping: Vec<f64>,
+    pub(crate) stiffness: Vec<f64>,
+    pub(crate) outputs: Outputs,
+    /// Newton workspace (not part of the snapshot).
+    pub(crate) ws: Work,
 }
 
 impl State {
@@ -22,13 +35,35 @@ impl State {
     #[must_use]
     pub fn new(model: &Model) -> Self {
         let def = model.def();
-        Self {
+        let mut s = Self {
             t: 0.0,
+            q: model.q0.clone(),
+            v: model.v0.clone(),
+            v_lo: vec![0.0; model.v0.len()],
+            lam: vec![0.0; model.nrows],
+            angles: model.angles0.clone(),
+            work: 0.0,
             inputs: vec![0.0; model.inputs().len()],
             damping: def.joints.iter().map(|j| j.damping).collect(),
             stiffness: def.joints.iter().map(|j| j.stiffness).collect(),
-            outputs: Outputs::default(),
-        }
+            outputs: Outputs::for_model(model),
+            ws: Work::new(model),
+        };
+        s.refresh_outputs(model);
+        s
+    }
+
+    /// Recomputes the outputs from the current state.
+    pub(crate) fn refresh_outputs(&mut self, model: &Model) {
+        super::outputs::update(
+            model,
+            &self.q,
+            &self.v,
+            &self.angles,
+            &self.stiffness,
+            self.work,
+            &mut self.outputs,
+        );
     }
 
     /// Current time, s.
@@ -53,7 +88,7 @@ impl State {
         &mut self.inputs
     }
 
-    /// Damping of joint `j` (tunable).
+    /// Damping of joint `j` (tunable), N·m·s/rad or N·s/m.
     #[must_use]
     pub fn damping(&self, j: usize) -> f64 {
         self.damping[j]
@@ -64,13 +99,13 @@ impl State {
         self.damping[j] = c;
     }
 
-    /// Stiffness of joint `j` (tunable).
+    /// Stiffness of joint `j` (tunable), N·m/rad or N/m.
     #[must_use]
     pub fn stiffness(&self, j: usize) -> f64 {
         self.stiffness[j]
     }
 
-    /// Sets the stiffness of joint `j`.
+    /// Sets the stiffness of joint `j` (the energy output follows the new value).
     pub fn set_stiffness(&mut self, j: usize, k: f64) {
         self.stiffness[j] = k;
     }
@@ -81,13 +116,45 @@ impl State {
         &self.outputs
     }
 
+    /// Coordinates `[φ, d1, d2, d3]` of every body (12 per body), world frame.
+    #[must_use]
+    pub fn coordinates(&self) -> &[f64] {
+        &self.q
+    }
+
+    /// Velocities (12 per body), world frame.
+    #[must_use]
+    pub fn velocities(&self) -> &[f64] {
+        &self.v
+    }
+
     /// Every number that determines the future of this state (time, q, v, multipliers used as
-    /// the Newton start, inputs, tunable parameters, accumulated work, unwrapping memory), flat.
+    /// the Newton start, inputs, tunable parameters, accumulated work, unwrapping memory), flat:
+    /// `[t, q.., v.., v_lo.., λ/2.., angles.., work, inputs.., damping.., stiffness..]`.
     #[must_use]
     pub fn snapshot(&self) -> Vec<f64> {
-        let mut out = vec![self.t];
+        let mut out = Vec::with_capacity(self.snapshot_len());
+        out.push(self.t);
+        out.extend_from_slice(&self.q);
+        out.extend_from_slice(&self.v);
+        out.extend_from_slice(&self.v_lo);
+        out.extend_from_slice(&self.lam);
+        out.extend_from_slice(&self.angles);
+        out.push(self.work);
         out.extend_from_slice(&self.inputs);
+        out.extend_from_slice(&self.damping);
+        out.extend_from_slice(&self.stiffness);
         out
+    }
+
+    fn snapshot_len(&self) -> usize {
+        2 + self.q.len()
+            + 2 * self.v.len()
+            + self.lam.len()
+            + self.angles.len()
+            + self.inputs.len()
+            + self.damping.len()
+            + self.stiffness.len()
     }
 
     /// Restores a [`State::snapshot`] taken from a state of the same model; recomputes outputs.
@@ -95,14 +162,33 @@ impl State {
     /// # Errors
     /// A message if the length does not match the model.
     pub fn restore(&mut self, model: &Model, data: &[f64]) -> Result<(), String> {
-        if data.len() != 1 + model.inputs().len() {
+        if data.len() != self.snapshot_len() {
             return Err(format!(
-                "snapshot length {} does not match the model",
-                data.len()
+                "snapshot length {} does not match the model ({})",
+                data.len(),
+                self.snapshot_len()
             ));
         }
-        self.t = data[0];
-        self.inputs.copy_from_slice(&data[1..]);
+        let mut at = 0;
+        let mut take = |dst: &mut [f64]| {
+            dst.copy_from_slice(&data[at..at + dst.len()]);
+            at += dst.len();
+        };
+        let mut t = [0.0];
+        take(&mut t);
+        take(&mut self.q);
+        take(&mut self.v);
+        take(&mut self.v_lo);
+        take(&mut self.lam);
+        take(&mut self.angles);
+        let mut w = [0.0];
+        take(&mut w);
+        take(&mut self.inputs);
+        take(&mut self.damping);
+        take(&mut self.stiffness);
+        self.t = t[0];
+        self.work = w[0];
+        self.refresh_outputs(model);
         Ok(())
     }
 }

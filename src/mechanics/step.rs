@@ -1,9 +1,15 @@
 //! One energy–momentum step (order 2) or its triple-jump composition (order 4).
 //!
-//! PLACEHOLDER written at project set-up; the mechanics work replaces it.
+//! A stage of size `h` solves the scaled EM equations (see `newton`) from the predictor
+//! `φ + h φ̇`, `dᵢ ← exp(h ω̂ₙ) dᵢ`, `μ = h² λₙ/2`, then sets `v_{n+1} = (2/h)(q_{n+1} − qₙ) − vₙ`.
+//! Order 4 is `Φ_{γ₁h} ∘ Φ_{γ₂h} ∘ Φ_{γ₁h}` with `γ₁ = 1/(2 − 2^{1/3})`, `γ₂ = 1 − 2γ₁`
+//! (theory.md §4.8); every stage is itself an EM step, so the conservation laws hold exactly.
+//! All work happens on workspace copies; the state is written only after every stage converged.
 
+use super::assemble::{read3, write3};
 use super::error::StepError;
 use super::model::Model;
+use super::newton::{evaluate, expm1_so3, solve, update, Held, Work};
 use super::state::State;
 
 /// Statistics of one step.
@@ -15,16 +21,178 @@ pub struct StepStats {
     pub residual: f64,
 }
 
+/// Triple-jump coefficient `γ₁ = 1/(2 − 2^{1/3})`.
+#[must_use]
+pub fn gamma1() -> f64 {
+    1.0 / (2.0 - 2f64.cbrt())
+}
+
 /// Advances `state` by `h` seconds with the model's order; inputs are held constant.
 /// On error the state is unchanged. Allocates nothing.
 ///
 /// # Errors
 /// [`StepError`] when Newton fails, a value is not finite, or `h` is not positive.
 pub fn step(model: &Model, state: &mut State, h: f64) -> Result<StepStats, StepError> {
-    let _ = model;
     if !(h.is_finite() && h > 0.0) {
         return Err(StepError::BadStep(h));
     }
-    state.set_time(state.time() + h);
-    Ok(StepStats::default())
+    if state.inputs.iter().any(|x| !x.is_finite()) {
+        return Err(StepError::NonFinite("inputs"));
+    }
+    if state
+        .damping
+        .iter()
+        .chain(state.stiffness.iter())
+        .any(|x| !x.is_finite())
+    {
+        return Err(StepError::NonFinite("damping or stiffness"));
+    }
+    let ws = &mut state.ws;
+    ws.qn.copy_from_slice(&state.q);
+    ws.vn.copy_from_slice(&state.v);
+    ws.vlo.copy_from_slice(&state.v_lo);
+    ws.lam.copy_from_slice(&state.lam);
+    ws.ang.copy_from_slice(&state.angles);
+    ws.work = state.work;
+    let held = Held {
+        inputs: &state.inputs,
+        damping: &state.damping,
+        stiffness: &state.stiffness,
+    };
+    let mut stats = StepStats::default();
+    let g1 = gamma1();
+    let stages: &[f64] = if model.settings().order == 4 {
+        &[g1, 1.0 - 2.0 * g1, g1]
+    } else {
+        &[1.0]
+    };
+    for &g in stages {
+        robust_stage(model, ws, &held, g * h, 0, &mut stats)?;
+    }
+    // commit
+    state.q.copy_from_slice(&ws.qn);
+    state.v.copy_from_slice(&ws.vn);
+    state.v_lo.copy_from_slice(&ws.vlo);
+    state.lam.copy_from_slice(&ws.lam);
+    state.angles.copy_from_slice(&ws.ang);
+    state.work = ws.work;
+    state.t += h;
+    state.refresh_outputs(model);
+    Ok(stats)
+}
+
+/// Deepest halving of a stage whose Newton iteration failed.
+const MAX_HALVINGS: usize = 3;
+
+/// A stage of size `h`; if Newton fails (no convergence or a singular matrix), the stage is
+/// redone as two EM stages of `h/2` (at most [`MAX_HALVINGS`] deep). Every sub-stage is itself
+/// an EM step, so energy, momentum and the torque balance stay exact; only the local accuracy
+/// of that step changes.
+fn robust_stage(
+    model: &Model,
+    ws: &mut Work,
+    held: &Held,
+    h: f64,
+    depth: usize,
+    stats: &mut StepStats,
+) -> Result<(), StepError> {
+    match stage(model, ws, held, h) {
+        Ok(s) => {
+            stats.iterations += s.iterations;
+            stats.residual = s.residual;
+            Ok(())
+        }
+        Err(e @ (StepError::NoConvergence { .. } | StepError::Singular))
+            if depth < MAX_HALVINGS && model.settings().max_iterations > 1 =>
+        {
+            let _ = e;
+            robust_stage(model, ws, held, 0.5 * h, depth + 1, stats)?;
+            robust_stage(model, ws, held, 0.5 * h, depth + 1, stats)
+        }
+        Err(e) => Err(e),
+    }
+}
+
+/// One EM stage of size `h` (may be negative inside the composition) on the workspace.
+fn stage(model: &Model, ws: &mut Work, held: &Held, h: f64) -> Result<StepStats, StepError> {
+    let nb = model.bodies.len();
+    // predictor
+    for b in 0..nb {
+        let o = 12 * b;
+        let inc = read3(&ws.vn, o) * h;
+        write3(&mut ws.dq, o, &inc);
+        write3(&mut ws.q, o, &(read3(&ws.qn, o) + inc));
+        let mut w = crate::math::Vec3::zeros();
+        for i in 0..3 {
+            w += read3(&ws.qn, o + 3 + 3 * i).cross(&read3(&ws.vn, o + 3 + 3 * i));
+        }
+        let em1 = expm1_so3(&(w * (0.5 * h)));
+        for i in 0..3 {
+            let dn = read3(&ws.qn, o + 3 + 3 * i);
+            let inc = em1 * dn;
+            write3(&mut ws.dq, o + 3 + 3 * i, &inc);
+            write3(&mut ws.q, o + 3 + 3 * i, &(dn + inc));
+        }
+    }
+    for k in 0..ws.mu.len() {
+        ws.mu[k] = ws.lam[k] * h * h;
+    }
+    let tol = model.settings().tolerance;
+    let maxit = model.settings().max_iterations;
+    let mut work = 0.0;
+    let mut it = 0;
+    loop {
+        it += 1;
+        let n = evaluate(model, ws, held, h, true, &mut work);
+        if !n.res.is_finite() {
+            return Err(StepError::NonFinite("state"));
+        }
+        if !solve(model, ws) {
+            return Err(StepError::Singular);
+        }
+        let upd = update(model, ws);
+        if !upd.is_finite() {
+            return Err(StepError::NonFinite("state"));
+        }
+        if upd <= tol && n.res <= tol {
+            break;
+        }
+        if it >= maxit {
+            return Err(StepError::NoConvergence {
+                iterations: it,
+                residual: n.res.max(upd),
+            });
+        }
+    }
+    // work and unwrapped angles at the converged iterate
+    let n = evaluate(model, ws, held, h, false, &mut work);
+    if !n.res.is_finite() {
+        return Err(StepError::NonFinite("state"));
+    }
+    // v_{n+1} = vₙ + 2a/h in double-double (two-sum), a from the final evaluation
+    for k in 0..ws.q.len() {
+        let c = ws.vlo[k] + 2.0 * ws.acc[k] / h;
+        let (hi, lo) = two_sum(ws.vn[k], c);
+        ws.vn[k] = hi;
+        ws.vlo[k] = lo;
+        ws.qn[k] = ws.q[k];
+    }
+    let ih2 = 1.0 / (h * h);
+    for k in 0..ws.mu.len() {
+        ws.lam[k] = ws.mu[k] * ih2;
+    }
+    ws.ang.copy_from_slice(&ws.ang1);
+    ws.work += work;
+    Ok(StepStats {
+        iterations: it,
+        residual: n.res,
+    })
+}
+
+/// Error-free sum: `a + b = s + e` exactly.
+#[inline]
+fn two_sum(a: f64, b: f64) -> (f64, f64) {
+    let s = a + b;
+    let bb = s - a;
+    (s, (a - (s - bb)) + (b - bb))
 }

@@ -1,0 +1,263 @@
+//! Model set-up: joint rows and coordinate handles (from `joint::JointGeom`), tree order,
+//! redundant-row detection and the initial state (from `kinematics` and `loops`).
+//!
+//! Redundant rows: with loop-closing joints, the reduced constraint Jacobian `G(q₀) P(q₀)` is
+//! tested row by row (tree joints first) by Gram–Schmidt with relative tolerance 1e-9; a row
+//! that depends on the kept ones is dropped from the Newton solve (it still counts in the
+//! constraint residual) and a note names the joint.
+
+use super::constraint::Nodes;
+use super::def::JointType;
+use super::error::ModelError;
+use super::joint::{Dof, JointGeom};
+use super::model::{DofRt, JointRt, Model};
+use crate::math::{matrix_to_quat, quat_to_matrix, Vec3};
+
+/// Fills the joint, tree and initial-state parts of `model`.
+pub(crate) fn build(model: &mut Model, joint_input: &[Option<usize>]) -> Result<(), ModelError> {
+    let def = model.def().clone();
+    let nb = def.bodies.len();
+    let tree = super::kinematics::tree_order(&def)?;
+    model.order.clone_from(&tree.order);
+    model.tree_joint.clone_from(&tree.tree_joint);
+    for b in 0..nb {
+        model.parent[b] = tree.tree_joint[b].and_then(|j| def.joints[j].parent);
+    }
+    // initial state: free-body-only models are placed here (this also admits bodies whose
+    // principal moments violate the triangle inequality, theory B1); jointed ones by kinematics
+    if def.joints.is_empty() {
+        free_initial(model)?;
+    } else {
+        let (q0, mut v0) = super::kinematics::initial_configuration(&def)?;
+        super::loops::check_loops(&def, &q0)?;
+        if super::loops::project_loop_velocities(&def, &q0, &mut v0)? {
+            model.push_note(
+                "initial rates violated the loop velocity constraints and were projected onto them (least change in kinetic energy)"
+                    .into(),
+            );
+        }
+        model.q0 = q0;
+        model.v0 = v0;
+    }
+    // joints
+    let mut geoms = Vec::with_capacity(def.joints.len());
+    for jd in &def.joints {
+        geoms.push(JointGeom::new(jd, &def.bodies)?);
+    }
+    let keep = redundant_rows(model, &geoms);
+    let mut row0 = 0;
+    let mut turn0 = 0;
+    let mut angles0 = Vec::new();
+    for (j, (jd, g)) in def.joints.iter().zip(geoms).enumerate() {
+        let mut rows = Vec::new();
+        let mut dropped = Vec::new();
+        for (k, row) in g.rows.iter().enumerate() {
+            if keep[j][k] {
+                rows.push(*row);
+            } else {
+                dropped.push(*row);
+            }
+        }
+        if !dropped.is_empty() {
+            model.push_note(format!(
+                "joint '{}': {} of {} constraint rows are redundant and were dropped",
+                jd.name,
+                dropped.len(),
+                g.rows.len()
+            ));
+        }
+        let spherical = jd.kind == JointType::Spherical;
+        let dofs: Vec<DofRt> = if spherical {
+            Vec::new()
+        } else {
+            g.dofs
+                .iter()
+                .map(|d| match d {
+                    Dof::Slide(r) => DofRt::Slide(*r),
+                    Dof::Turn(n) => DofRt::Turn(*n),
+                })
+                .collect()
+        };
+        // unwrapping memory starts from the given initial angle (q = 4.0 stays 4.0)
+        let qa = super::joint::body_nodes(&model.q0, g.parent);
+        let qb = super::joint::body_nodes(&model.q0, Some(g.child));
+        let mut raw = [0.0; 4];
+        g.coords(&qa, &qb, &mut raw[..jd.kind.nq()]);
+        let given = if jd.loop_closing {
+            None
+        } else {
+            super::kinematics::joint_initial(jd).ok().map(|x| x.0)
+        };
+        for (k, d) in dofs.iter().enumerate() {
+            if let DofRt::Turn(_) = d {
+                let a = given.as_ref().map_or(raw[k], |q| unwrap(q[k], raw[k]));
+                angles0.push(a);
+            }
+        }
+        let nturn = dofs.iter().filter(|d| matches!(d, DofRt::Turn(_))).count();
+        let nrow = rows.len();
+        model.joints.push(JointRt {
+            parent: g.parent,
+            child: g.child,
+            rows,
+            dropped,
+            row0,
+            dofs,
+            sph_axes: if spherical { Some(g.a) } else { None },
+            input: joint_input[j],
+            turn0,
+            geom: g,
+        });
+        row0 += nrow;
+        turn0 += nturn;
+    }
+    model.nrows = row0;
+    model.nturn = turn0;
+    model.angles0 = angles0;
+    model.dense = !tree.loop_joints.is_empty();
+    for (b, tj) in model.tree_joint.iter().enumerate() {
+        if let Some(j) = tj {
+            if model.joints[*j].rows.len() > 6 {
+                return Err(ModelError::Invalid(format!(
+                    "body {b}: tree joint with more than 6 rows"
+                )));
+            }
+        }
+    }
+    Ok(())
+}
+
+/// Which rows to keep (`keep[j][k]`): all of them for a tree; with loops, Gram–Schmidt on the
+/// twist Jacobian rows at `q₀`, tree joints first, relative tolerance 1e-9.
+fn redundant_rows(model: &Model, geoms: &[JointGeom]) -> Vec<Vec<bool>> {
+    let def = model.def();
+    let mut keep: Vec<Vec<bool>> = geoms.iter().map(|g| vec![true; g.rows.len()]).collect();
+    if !def.joints.iter().any(|j| j.loop_closing) {
+        return keep;
+    }
+    let nb = def.bodies.len();
+    let lc = model.lc;
+    let mut basis: Vec<Vec<f64>> = Vec::new();
+    let order: Vec<usize> = (0..geoms.len())
+        .filter(|&j| !def.joints[j].loop_closing)
+        .chain((0..geoms.len()).filter(|&j| def.joints[j].loop_closing))
+        .collect();
+    for j in order {
+        let g = &geoms[j];
+        let a = super::loops::twist_jacobian(std::slice::from_ref(g), &model.q0, nb);
+        for k in 0..g.rows.len() {
+            // columns scaled to (m/s·lc⁻¹, rad/s) so that lengths and angles weigh alike
+            let mut r: Vec<f64> = (0..6 * nb)
+                .map(|c| a[(k, c)] * if c % 6 < 3 { lc } else { 1.0 })
+                .collect();
+            let n0 = r.iter().map(|x| x * x).sum::<f64>().sqrt();
+            for _ in 0..2 {
+                for e in &basis {
+                    let p: f64 = r.iter().zip(e).map(|(x, y)| x * y).sum();
+                    r.iter_mut().zip(e).for_each(|(x, y)| *x -= p * y);
+                }
+            }
+            let n1 = r.iter().map(|x| x * x).sum::<f64>().sqrt();
+            if n0 == 0.0 || n1 <= 1e-9 * n0 {
+                keep[j][k] = false;
+            } else {
+                r.iter_mut().for_each(|x| *x /= n1);
+                basis.push(r);
+            }
+        }
+    }
+    keep
+}
+
+/// Free bodies of a joint-free model: COM and directors from the given pose and twist.
+fn free_initial(model: &mut Model) -> Result<(), ModelError> {
+    let def = model.def().clone();
+    for fb in &def.free_bodies {
+        let ok = [fb.position, fb.velocity, fb.angular_velocity]
+            .iter()
+            .all(|v| v.iter().all(|x| x.is_finite()))
+            && fb.orientation.iter().all(|x| x.is_finite())
+            && (fb.orientation.transpose() * fb.orientation - crate::math::Mat3::identity()).amax()
+                < 1e-9
+            && fb.orientation.determinant() > 0.0;
+        if !ok {
+            return Err(ModelError::Invalid(format!(
+                "body '{}': initial state must be finite with an orthonormal right-handed orientation",
+                def.bodies[fb.body].name
+            )));
+        }
+        let com = model.bodies[fb.body].com;
+        let r = quat_to_matrix(&matrix_to_quat(&fb.orientation));
+        let rc = r * com;
+        let phi = fb.position + rc;
+        let phid = fb.velocity + fb.angular_velocity.cross(&rc);
+        let q = &mut model.q0[12 * fb.body..12 * fb.body + 12];
+        let v = &mut model.v0[12 * fb.body..12 * fb.body + 12];
+        write3(q, 0, &phi);
+        write3(v, 0, &phid);
+        for i in 0..3 {
+            let d: Vec3 = r.column(i).into();
+            write3(q, 3 + 3 * i, &d);
+            write3(v, 3 + 3 * i, &fb.angular_velocity.cross(&d));
+        }
+    }
+    Ok(())
+}
+
+/// The unwrapped angle nearest to `prev` with the same value as `raw` modulo 2π.
+#[must_use]
+pub(crate) fn unwrap(prev: f64, raw: f64) -> f64 {
+    let tau = std::f64::consts::TAU;
+    let d = raw - prev;
+    prev + d - tau * (d / tau).round()
+}
+
+/// Writes `v` to `x[at..at + 3]`.
+pub(crate) fn write3(x: &mut [f64], at: usize, v: &Vec3) {
+    x[at] = v.x;
+    x[at + 1] = v.y;
+    x[at + 2] = v.z;
+}
+
+/// Reads `x[at..at + 3]`.
+#[must_use]
+pub(crate) fn read3(x: &[f64], at: usize) -> Vec3 {
+    Vec3::new(x[at], x[at + 1], x[at + 2])
+}
+
+/// Raw (wrapped) angle of turn coordinate `dk` of joint `j`, rad (coordinate index = dof index
+/// for every non-spherical joint).
+pub(crate) fn turn_angle(model: &Model, j: usize, dk: usize, qa: &Nodes, qb: &Nodes) -> f64 {
+    let g = &model.joints[j].geom;
+    let mut raw = [0.0; 4];
+    g.coords(qa, qb, &mut raw[..g.kind.nq()]);
+    raw[dk]
+}
+
+/// Joint coordinates and rates at the nodes; turn coordinates take the unwrapped `angles`
+/// (this joint's turn dofs first).
+#[allow(clippy::too_many_arguments)]
+pub(crate) fn joint_outputs(
+    model: &Model,
+    j: usize,
+    qa: &Nodes,
+    qb: &Nodes,
+    va: &Nodes,
+    vb: &Nodes,
+    angles: &[f64],
+    q: &mut [f64],
+    qd: &mut [f64],
+) {
+    let jt = &model.joints[j];
+    let world = super::joint::world_nodes();
+    let qa = if jt.parent.is_some() { qa } else { &world };
+    jt.geom.coords(qa, qb, q);
+    jt.geom.rates(qa, qb, va, vb, qd);
+    let mut t = 0;
+    for (k, d) in jt.dofs.iter().enumerate() {
+        if let DofRt::Turn(_) = d {
+            q[k] = angles[t];
+            t += 1;
+        }
+    }
+}

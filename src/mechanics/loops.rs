@@ -1,0 +1,168 @@
+//! Loop-closing joints at the start: position check and velocity projection (interface.md §2:
+//! "initial rates that violate a loop's velocity constraints are projected onto them, the least
+//! change in kinetic energy").
+//!
+//! The projection works in twist coordinates `t = (φ̇, ω)` per body (6 numbers, world frame,
+//! φ̇ the centre-of-mass velocity), where `q̇ = P(q) t` (`ḋ_i = ω × d_i`) and the kinetic
+//! energy is `½ tᵀ M_t t`, `M_t = diag(m I, R J Rᵀ)`. It solves
+//! `min ½ Δtᵀ M_t Δt` subject to `G(q0) P(q0) (t0 + Δt) = 0` over the rows of **all** joints
+//! (tree rows are already satisfied by `t0`, so they only keep the tree intact), with an SVD
+//! pseudo-inverse so that redundant loop rows do no harm.
+
+use nalgebra::{DMatrix, DVector};
+
+use super::body::{angular_velocity, rotation, BodyInertia};
+use super::constraint::NODES;
+use super::def::ModelDef;
+use super::error::ModelError;
+use super::joint::{body_nodes, JointGeom};
+use crate::math::Vec3;
+
+/// Tolerance on a loop-closing joint's position residual at the start, m or 1.
+pub const LOOP_TOLERANCE: f64 = 1e-6;
+
+/// The largest row violation of every loop-closing joint at `q` (12 per body):
+/// `(joint index, residual)` in model order.
+///
+/// # Errors
+/// [`ModelError::Invalid`] from [`JointGeom::new`].
+pub fn loop_residuals(def: &ModelDef, q: &[f64]) -> Result<Vec<(usize, f64)>, ModelError> {
+    let mut out = Vec::new();
+    for (j, jd) in def
+        .joints
+        .iter()
+        .enumerate()
+        .filter(|(_, jd)| jd.loop_closing)
+    {
+        let g = JointGeom::new(jd, &def.bodies)?;
+        out.push((
+            j,
+            g.residual(&body_nodes(q, g.parent), &body_nodes(q, Some(g.child))),
+        ));
+    }
+    Ok(out)
+}
+
+/// Fails with [`ModelError::LoopNotClosed`] for the first loop-closing joint whose residual at
+/// `q` exceeds [`LOOP_TOLERANCE`].
+///
+/// # Errors
+/// As described, and [`ModelError::Invalid`] from [`JointGeom::new`].
+pub fn check_loops(def: &ModelDef, q: &[f64]) -> Result<(), ModelError> {
+    for (j, residual) in loop_residuals(def, q)? {
+        if residual > LOOP_TOLERANCE || !residual.is_finite() {
+            return Err(ModelError::LoopNotClosed {
+                joint: def.joints[j].name.clone(),
+                residual,
+            });
+        }
+    }
+    Ok(())
+}
+
+/// The velocity Jacobian in twist coordinates, `A = G(q) P(q)` (rows: every row of every joint
+/// in `geoms`, in order; columns: `[φ̇, ω]` per body). Row units m/s per (m/s, rad/s).
+#[must_use]
+pub fn twist_jacobian(geoms: &[JointGeom], q: &[f64], nbody: usize) -> DMatrix<f64> {
+    let nrow = geoms.iter().map(|g| g.rows.len()).sum();
+    let mut a = DMatrix::zeros(nrow, 6 * nbody);
+    let mut i = 0;
+    for g in geoms {
+        let (qa, qb) = (body_nodes(q, g.parent), body_nodes(q, Some(g.child)));
+        for row in &g.rows {
+            let mut grad = [Vec3::zeros(); 2 * NODES];
+            row.gradient(&qa, &qb, &mut grad);
+            for (side, body, nodes) in [(0, g.parent, &qa), (NODES, Some(g.child), &qb)] {
+                let Some(b) = body else { continue };
+                // ∂g/∂φ · φ̇ + Σ ∂g/∂d_k · (ω × d_k) = ∂g/∂φ · φ̇ + ω · Σ d_k × ∂g/∂d_k
+                let moment: Vec3 = (1..NODES).map(|k| nodes[k].cross(&grad[side + k])).sum();
+                for c in 0..3 {
+                    a[(i, 6 * b + c)] += grad[side][c];
+                    a[(i, 6 * b + 3 + c)] += moment[c];
+                }
+            }
+            i += 1;
+        }
+    }
+    a
+}
+
+/// Projects the initial velocities `v` (12 per body) at `q` onto the joints' velocity
+/// constraints with the least change in kinetic energy (module docs). Returns `true` when the
+/// loop-closing rows were violated (by more than 1e-12 relative to the largest twist component)
+/// and `v` was changed, `false` (v untouched) otherwise.
+///
+/// # Errors
+/// [`ModelError::Invalid`] from [`JointGeom::new`] or `BodyInertia::new`.
+pub fn project_loop_velocities(
+    def: &ModelDef,
+    q: &[f64],
+    v: &mut [f64],
+) -> Result<bool, ModelError> {
+    if !def.joints.iter().any(|j| j.loop_closing) {
+        return Ok(false);
+    }
+    let n = def.bodies.len();
+    let geoms = def
+        .joints
+        .iter()
+        .map(|j| JointGeom::new(j, &def.bodies))
+        .collect::<Result<Vec<_>, _>>()?;
+    let a = twist_jacobian(&geoms, q, n);
+    let mut t0 = DVector::zeros(6 * n);
+    for b in 0..n {
+        let (qb, vb) = (&q[12 * b..12 * b + 12], &v[12 * b..12 * b + 12]);
+        let w = angular_velocity(qb, vb);
+        for c in 0..3 {
+            t0[6 * b + c] = vb[c];
+            t0[6 * b + 3 + c] = w[c];
+        }
+    }
+    let res = &a * &t0;
+    let mut i = 0;
+    let mut loop_violation: f64 = 0.0;
+    for (g, jd) in geoms.iter().zip(&def.joints) {
+        if jd.loop_closing {
+            loop_violation = (i..i + g.rows.len())
+                .map(|k| res[k].abs())
+                .fold(loop_violation, f64::max);
+        }
+        i += g.rows.len();
+    }
+    if loop_violation <= 1e-12 * (1.0 + t0.amax()) {
+        return Ok(false);
+    }
+    // metric M_t^{-1/2} per body, then y = −pinv(A M_t^{-1/2}) A t0, Δt = M_t^{-1/2} y
+    let mut wi = DMatrix::zeros(6 * n, 6 * n);
+    for (b, body) in def.bodies.iter().enumerate() {
+        let inertia = BodyInertia::new(body)?;
+        let r = rotation(&q[12 * b..12 * b + 12]);
+        let eig = (r * inertia.inertia * r.transpose()).symmetric_eigen();
+        let js = eig.eigenvectors
+            * nalgebra::Matrix3::from_diagonal(&eig.eigenvalues.map(|x| 1.0 / x.sqrt()))
+            * eig.eigenvectors.transpose();
+        for c in 0..3 {
+            wi[(6 * b + c, 6 * b + c)] = 1.0 / inertia.mass.sqrt();
+        }
+        wi.view_mut((6 * b + 3, 6 * b + 3), (3, 3)).copy_from(&js);
+    }
+    let svd = (&a * &wi).svd(true, true);
+    let eps = 1e-10 * svd.singular_values.max();
+    let y = svd
+        .solve(&res, eps)
+        .map_err(|e| ModelError::Invalid(format!("velocity projection failed: {e}")))?;
+    let t = t0 - &wi * y;
+    for b in 0..n {
+        let qb = &q[12 * b..12 * b + 12];
+        let w = Vec3::new(t[6 * b + 3], t[6 * b + 4], t[6 * b + 5]);
+        let vb = &mut v[12 * b..12 * b + 12];
+        for c in 0..3 {
+            vb[c] = t[6 * b + c];
+        }
+        for k in 0..3 {
+            let d = Vec3::new(qb[3 + 3 * k], qb[4 + 3 * k], qb[5 + 3 * k]);
+            vb[3 + 3 * k..6 + 3 * k].copy_from_slice(w.cross(&d).as_slice());
+        }
+    }
+    Ok(true)
+}

@@ -1,0 +1,295 @@
+//! Shared helpers of the integration tests: the tolerance knob and model builders (free body,
+//! double pendulum, heavy top, chainN as in `shared/peers/models/*.json`).
+#![allow(dead_code)]
+
+use triad::math::{exp_so3, Mat3, Vec3};
+use triad::mechanics::{
+    BodyDef, BodyLoadDef, Frame, FreeBodyInitial, JointDef, JointInitial, JointType, Model,
+    ModelDef, SolverSettings, State,
+};
+
+/// Scales a tolerance by the env knob `TRIAD_TOL_SCALE` (default 1).
+#[must_use]
+pub fn tol(x: f64) -> f64 {
+    let s = std::env::var("TRIAD_TOL_SCALE")
+        .ok()
+        .and_then(|v| v.parse::<f64>().ok())
+        .unwrap_or(1.0);
+    x * s
+}
+
+/// Solver settings with step `h`, `order`, tolerance 1e-12 (round-off conservation).
+#[must_use]
+pub fn settings(h: f64, order: u8) -> SolverSettings {
+    SolverSettings {
+        max_step: h,
+        order,
+        tolerance: 1e-12,
+        max_iterations: 30,
+    }
+}
+
+/// Inertia of a homogeneous box `a × b × c` of mass `m` (edges along the body axes).
+#[must_use]
+pub fn box_inertia(m: f64, a: f64, b: f64, c: f64) -> Mat3 {
+    Mat3::from_diagonal(&Vec3::new(b * b + c * c, a * a + c * c, a * a + b * b)) * (m / 12.0)
+}
+
+/// Inertia `[Ixx, Iyy, Izz, Ixy, Ixz, Iyz]` as a matrix.
+#[must_use]
+pub fn inertia6(i: [f64; 6]) -> Mat3 {
+    Mat3::new(i[0], i[3], i[4], i[3], i[1], i[5], i[4], i[5], i[2])
+}
+
+/// A body named `name`.
+#[must_use]
+pub fn body(name: &str, mass: f64, com: Vec3, inertia: Mat3) -> BodyDef {
+    BodyDef {
+        name: name.into(),
+        mass,
+        com,
+        inertia,
+    }
+}
+
+/// One free body (COM at the frame origin) with rotation `r0`, spatial angular velocity `w0`,
+/// velocity `v0`, optional torque/force inputs, no gravity.
+#[must_use]
+pub fn free_body(
+    mass: f64,
+    inertia: Mat3,
+    r0: Mat3,
+    w0: Vec3,
+    v0: Vec3,
+    torque: bool,
+    force: bool,
+) -> ModelDef {
+    ModelDef {
+        gravity: Vec3::zeros(),
+        bodies: vec![body("b", mass, Vec3::zeros(), inertia)],
+        joints: vec![],
+        loads: if torque || force {
+            vec![BodyLoadDef {
+                body: 0,
+                torque,
+                force,
+            }]
+        } else {
+            vec![]
+        },
+        free_bodies: vec![FreeBodyInitial {
+            body: 0,
+            position: Vec3::zeros(),
+            orientation: r0,
+            velocity: v0,
+            angular_velocity: w0,
+        }],
+    }
+}
+
+/// A joint with defaults (identity frames, not actuated, no damping/stiffness).
+#[must_use]
+pub fn joint(
+    name: &str,
+    kind: JointType,
+    parent: Option<usize>,
+    child: usize,
+    anchor: Vec3,
+    axis: Vec3,
+) -> JointDef {
+    JointDef {
+        name: name.into(),
+        kind,
+        parent,
+        child,
+        parent_frame: Frame {
+            translation: anchor,
+            rotation: Mat3::identity(),
+        },
+        child_frame: Frame::identity(),
+        axis,
+        axis2: Vec3::new(0.0, 1.0, 0.0),
+        actuated: false,
+        damping: 0.0,
+        stiffness: 0.0,
+        loop_closing: false,
+        initial: JointInitial::Coords {
+            q: vec![],
+            qd: vec![],
+        },
+    }
+}
+
+/// Sets the initial coordinates of a joint.
+pub fn set_q(j: &mut JointDef, q: &[f64], qd: &[f64]) {
+    j.initial = JointInitial::Coords {
+        q: q.to_vec(),
+        qd: qd.to_vec(),
+    };
+}
+
+/// Peers' double pendulum: two 1 m / 1 kg rods about world y, released from (2.0, 0.5) rad.
+#[must_use]
+pub fn double_pendulum() -> ModelDef {
+    let i = inertia6([
+        0.08335833333333333,
+        0.08335833333333333,
+        5e-05,
+        0.0,
+        0.0,
+        0.0,
+    ]);
+    let com = Vec3::new(0.0, 0.0, -0.5);
+    let mut j1 = joint("j1", JointType::Revolute, None, 0, Vec3::zeros(), Vec3::y());
+    let mut j2 = joint(
+        "j2",
+        JointType::Revolute,
+        Some(0),
+        1,
+        Vec3::new(0.0, 0.0, -1.0),
+        Vec3::y(),
+    );
+    set_q(&mut j1, &[2.0], &[]);
+    set_q(&mut j2, &[0.5], &[]);
+    ModelDef {
+        gravity: Vec3::new(0.0, 0.0, -9.81),
+        bodies: vec![body("link1", 1.0, com, i), body("link2", 1.0, com, i)],
+        joints: vec![j1, j2],
+        loads: vec![],
+        free_bodies: vec![],
+    }
+}
+
+/// Peers' heavy top: m = 1, COM 0.5 m along body z, I = diag(0.1, 0.1, 0.05), spherical tip,
+/// tilted 30° about x, spin 30 rad/s.
+#[must_use]
+pub fn heavy_top() -> ModelDef {
+    let mut j = joint(
+        "tip",
+        JointType::Spherical,
+        None,
+        0,
+        Vec3::zeros(),
+        Vec3::z(),
+    );
+    j.initial = JointInitial::Spherical {
+        quat: [0.9659258262890683, 0.25881904510252074, 0.0, 0.0],
+        w: Vec3::new(0.0, 0.0, 30.0),
+    };
+    ModelDef {
+        gravity: Vec3::new(0.0, 0.0, -9.81),
+        bodies: vec![body(
+            "top",
+            1.0,
+            Vec3::new(0.0, 0.0, 0.5),
+            Mat3::from_diagonal(&Vec3::new(0.1, 0.1, 0.05)),
+        )],
+        joints: vec![j],
+        loads: vec![],
+        free_bodies: vec![],
+    }
+}
+
+/// Peers' chainN: rods 0.25 m / 0.25 kg hanging along −z, revolute axes alternating x, y;
+/// q0: first two joints 0.8 rad, others 0.1 sin(0.7 i), at rest.
+#[must_use]
+pub fn chain(n: usize) -> ModelDef {
+    let i = inertia6([
+        0.0013036458333333335,
+        0.0013036458333333335,
+        3.125e-06,
+        0.0,
+        0.0,
+        0.0,
+    ]);
+    let mut bodies = Vec::new();
+    let mut joints = Vec::new();
+    for k in 0..n {
+        bodies.push(body(
+            &format!("link{}", k + 1),
+            0.25,
+            Vec3::new(0.0, 0.0, -0.125),
+            i,
+        ));
+        let axis = if k % 2 == 0 { Vec3::x() } else { Vec3::y() };
+        let (parent, anchor) = if k == 0 {
+            (None, Vec3::zeros())
+        } else {
+            (Some(k - 1), Vec3::new(0.0, 0.0, -0.25))
+        };
+        let mut j = joint(
+            &format!("j{}", k + 1),
+            JointType::Revolute,
+            parent,
+            k,
+            anchor,
+            axis,
+        );
+        let q = if k < 2 {
+            0.8
+        } else {
+            0.1 * (0.7 * k as f64).sin()
+        };
+        set_q(&mut j, &[q], &[]);
+        joints.push(j);
+    }
+    ModelDef {
+        gravity: Vec3::new(0.0, 0.0, -9.81),
+        bodies,
+        joints,
+        loads: vec![],
+        free_bodies: vec![],
+    }
+}
+
+/// Model + state.
+#[must_use]
+pub fn build(def: &ModelDef, s: SolverSettings) -> (Model, State) {
+    let m = Model::new(def, s).expect("model builds");
+    let st = State::new(&m);
+    (m, st)
+}
+
+/// `exp` of a rotation vector.
+#[must_use]
+pub fn rot(v: [f64; 3]) -> Mat3 {
+    exp_so3(&Vec3::new(v[0], v[1], v[2]))
+}
+
+/// Relative difference `|a − b| / max(|b|, floor)`.
+#[must_use]
+pub fn rel(a: f64, b: f64, floor: f64) -> f64 {
+    (a - b).abs() / b.abs().max(floor)
+}
+
+/// Crank-rocker four-bar (ground pivots 0 and (2, 0, 0), crank 0.6, coupler 2.2, rocker 1.5,
+/// links along body x, gravity −9.81 y) closed by a loop-closing revolute at the rocker end.
+#[must_use]
+pub fn four_bar(theta1: f64, crank_rate: f64) -> ModelDef {
+    let (g, a, b, c) = (2.0, 0.6, 2.2, 1.5);
+    let link = |name: &str, len: f64| body(name, len, Vec3::new(0.5 * len, 0.0, 0.0), box_inertia(len, len, 0.05, 0.05));
+    let pa = Vec3::new(a * theta1.cos(), a * theta1.sin(), 0.0);
+    let o2 = Vec3::new(g, 0.0, 0.0);
+    let dist = (o2 - pa).norm();
+    let along = (b * b - c * c + dist * dist) / (2.0 * dist);
+    let u = (o2 - pa) / dist;
+    let pb = pa + u * along + Vec3::z().cross(&u) * (b * b - along * along).sqrt();
+    let th2 = (pb - pa).y.atan2((pb - pa).x);
+    let th3 = (o2 - pb).y.atan2((o2 - pb).x);
+    let mut close = joint("close", JointType::Revolute, None, 2, o2, Vec3::z());
+    close.loop_closing = true;
+    close.child_frame.translation = Vec3::new(c, 0.0, 0.0);
+    let mut j0 = joint("j0", JointType::Revolute, None, 0, Vec3::zeros(), Vec3::z());
+    set_q(&mut j0, &[theta1], &[crank_rate]);
+    let mut j1 = joint("j1", JointType::Revolute, Some(0), 1, Vec3::new(a, 0.0, 0.0), Vec3::z());
+    set_q(&mut j1, &[th2 - theta1], &[0.0]);
+    let mut j2 = joint("j2", JointType::Revolute, Some(1), 2, Vec3::new(b, 0.0, 0.0), Vec3::z());
+    set_q(&mut j2, &[th3 - th2], &[0.0]);
+    ModelDef {
+        gravity: Vec3::new(0.0, -9.81, 0.0),
+        bodies: vec![link("crank", a), link("coupler", b), link("rocker", c)],
+        joints: vec![j0, j1, j2, close],
+        loads: vec![],
+        free_bodies: vec![],
+    }
+}

@@ -1,0 +1,70 @@
+//! `step` allocates nothing after set-up (style rule 1): a counting global allocator sees zero
+//! allocations across many steps of free, tree and loop models, order 2 and 4, with inputs,
+//! springs and dampers.
+
+mod common;
+use common::*;
+use std::alloc::{GlobalAlloc, Layout, System};
+use std::cell::Cell;
+use triad::mechanics::step;
+
+struct Counting;
+
+thread_local! {
+    // allocations made by this thread (other test-harness threads do not count)
+    static ALLOCS: Cell<usize> = const { Cell::new(0) };
+}
+
+fn count() -> usize {
+    ALLOCS.with(Cell::get)
+}
+
+fn bump() {
+    let _ = ALLOCS.try_with(|c| c.set(c.get() + 1));
+}
+
+// SAFETY-free wrapper: forwards to the system allocator and counts.
+#[allow(unsafe_code)]
+unsafe impl GlobalAlloc for Counting {
+    unsafe fn alloc(&self, layout: Layout) -> *mut u8 {
+        bump();
+        // SAFETY: same contract as the caller's.
+        unsafe { System.alloc(layout) }
+    }
+    unsafe fn dealloc(&self, ptr: *mut u8, layout: Layout) {
+        // SAFETY: same contract as the caller's.
+        unsafe { System.dealloc(ptr, layout) }
+    }
+    unsafe fn realloc(&self, ptr: *mut u8, layout: Layout, new: usize) -> *mut u8 {
+        bump();
+        // SAFETY: same contract as the caller's.
+        unsafe { System.realloc(ptr, layout, new) }
+    }
+}
+
+#[global_allocator]
+static GLOBAL: Counting = Counting;
+
+#[test]
+fn step_does_not_allocate() {
+    let mut b7 = double_pendulum();
+    b7.joints[1].actuated = true;
+    b7.joints[1].stiffness = 3.0;
+    b7.joints[1].damping = 0.2;
+    let mut fb = four_bar(1.0, 3.0);
+    fb.joints[0].actuated = true;
+    fb.joints[1].damping = 0.1;
+    for (def, order) in [(b7.clone(), 2), (b7, 4), (heavy_top(), 4), (chain(10), 2), (fb, 4)] {
+        let (m, mut s) = build(&def, settings(0.01, order));
+        if !s.inputs().is_empty() {
+            s.inputs_mut()[0] = 0.5;
+        }
+        step(&m, &mut s, 0.01).unwrap();
+        let before = count();
+        for _ in 0..50 {
+            step(&m, &mut s, 0.01).unwrap();
+        }
+        let n = count() - before;
+        assert_eq!(n, 0, "{n} allocations in 50 steps");
+    }
+}
