@@ -165,7 +165,12 @@ fn inertia(report: &mut Report, path: &str, b: &super::BodySpec) {
     let eig = SymmetricEigen::new(m).eigenvalues;
     let mut e = [eig[0], eig[1], eig[2]];
     e.sort_by(f64::total_cmp);
-    if e[0] <= 0.0 {
+    if e.iter().any(|x| !x.is_finite()) {
+        report.push(
+            path,
+            "is too large to handle (its principal moments overflow)",
+        );
+    } else if e[0] <= 0.0 {
         report.push(
             path,
             format!(
