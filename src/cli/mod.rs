@@ -35,6 +35,7 @@ pub enum Command {
         model: String,
     },
     /// Run MODEL natively and write every output variable every --step seconds as CSV.
+    #[command(allow_negative_numbers = true)]
     Simulate(simulate::SimulateArgs),
     /// Package an FMI 2.0 Co-Simulation FMU for MODEL.
     Build {
