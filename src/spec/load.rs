@@ -67,7 +67,7 @@ fn humanize(msg: &str) -> String {
         "expected 4 numbers [w, x, y, z]",
     )
     .replace("expected f64", "expected a number")
-    .replace("expected u8", "expected an integer")
+    .replace("expected u8", "expected 2 or 4")
     .replace("expected a boolean", "expected true or false")
     .replace("a sequence", "an array")
     .replace("invalid type: ", "")
