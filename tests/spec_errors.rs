@@ -91,3 +91,21 @@ fn loop_closing_joint_takes_no_initial() {
         "{err}"
     );
 }
+
+#[test]
+fn shape_and_consistency_problems_are_reported_together() {
+    let text = "name = \"Mix\"\ngravity = [0.0, 0.0]\n[[body]]\nname = \"a\"\nmass = -1.0\ncolour = \"red\"\ninertia = [1.0, 1.0, 5.0]\n\
+                [[joint]]\nname = \"j\"\ntype = \"revolute\"\nparent = \"world\"\nchild = \"a\"\naxis = [0.0, 0.0]\n";
+    let err = Spec::from_str(text, Format::Toml, "mix.toml").unwrap_err().to_string();
+    let lines: Vec<&str> = err.lines().collect();
+    assert_eq!(
+        lines,
+        [
+            "mix.toml: gravity: expected 3 numbers, found 2",
+            "mix.toml: body[0].colour: unknown field \"colour\"; expected one of: name, mass, com, inertia, position, orientation, velocity, angular_velocity",
+            "mix.toml: joint[0].axis: expected 3 numbers, found 2",
+            "mix.toml: body[0].mass: must be positive and finite (got -1)",
+            "mix.toml: body[0].inertia: violates the triangle inequality: principal moments 1 + 1 < 5, which no mass distribution has",
+        ]
+    );
+}
