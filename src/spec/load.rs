@@ -271,6 +271,7 @@ fn line_col(text: &str, offset: usize) -> (usize, usize) {
 
 /// A parsed spec: the shape problems, the spec itself when it could be read (after pruning
 /// badly shaped optional fields), and the pruned paths.
+#[derive(Debug)]
 pub(super) struct Parsed {
     /// Shape problems, in document order.
     pub(super) problems: Vec<Problem>,
