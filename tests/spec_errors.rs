@@ -96,7 +96,9 @@ fn loop_closing_joint_takes_no_initial() {
 fn shape_and_consistency_problems_are_reported_together() {
     let text = "name = \"Mix\"\ngravity = [0.0, 0.0]\n[[body]]\nname = \"a\"\nmass = -1.0\ncolour = \"red\"\ninertia = [1.0, 1.0, 5.0]\n\
                 [[joint]]\nname = \"j\"\ntype = \"revolute\"\nparent = \"world\"\nchild = \"a\"\naxis = [0.0, 0.0]\n";
-    let err = Spec::from_str(text, Format::Toml, "mix.toml").unwrap_err().to_string();
+    let err = Spec::from_str(text, Format::Toml, "mix.toml")
+        .unwrap_err()
+        .to_string();
     let lines: Vec<&str> = err.lines().collect();
     assert_eq!(
         lines,
