@@ -1,0 +1,407 @@
+//! One FMU instance: life-cycle calls and `fmi2DoStep`. The state machine is in `mode.rs`,
+//! get/set by value reference in `params.rs`, FMU states in `snapshot.rs`.
+
+use super::contract::{self, Format, Spec};
+use super::log::{Category, Filter, LogSink};
+pub use super::mode::{allowed, Mode, Op};
+use super::status::{FmuError, Status};
+use crate::mechanics::{ModelDef, SolverSettings};
+use crate::sim::Simulation;
+use crate::variables::{Accessor, VariableTable};
+use std::collections::HashMap;
+use std::path::Path;
+
+/// One FMU instance: the model definition it was made from, the working copy that parameter
+/// sets change, the simulation (from `fmi2EnterInitializationMode` on), the mode and the log.
+pub struct Instance {
+    pub(super) name: String,
+    pub(super) guid: String,
+    pub(super) spec: Spec,
+    pub(super) base: (ModelDef, SolverSettings),
+    pub(super) def: ModelDef,
+    pub(super) settings: SolverSettings,
+    pub(super) table: VariableTable,
+    /// value reference → index into `table.vars`
+    pub(super) index: HashMap<u32, usize>,
+    /// input values while no simulation exists (Instantiated mode), by input slot
+    pub(super) inputs: Vec<f64>,
+    pub(super) sim: Option<Simulation>,
+    pub(super) mode: Mode,
+    pub(super) start_time: f64,
+    pub(super) stop_time: Option<f64>,
+    pub(super) last_successful_time: f64,
+    pub(super) filter: Filter,
+    sink: Box<dyn LogSink>,
+}
+
+impl std::fmt::Debug for Instance {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.debug_struct("Instance")
+            .field("name", &self.name)
+            .field("mode", &self.mode)
+            .finish_non_exhaustive()
+    }
+}
+
+/// Relative tolerance of the communication-point check in `fmi2DoStep`.
+const TIME_RTOL: f64 = 1e-9;
+
+impl Instance {
+    /// `fmi2Instantiate` for Co-Simulation: reads `resources/model.json` from `resource_dir`,
+    /// builds the variable table, recomputes the GUID and refuses a mismatch. Failures are
+    /// logged through `sink` (category `logStatusError`) and give `None`.
+    pub fn from_resources(
+        name: &str,
+        guid: &str,
+        resource_dir: &Path,
+        logging_on: bool,
+        sink: Box<dyn LogSink>,
+    ) -> Option<Instance> {
+        let path = resource_dir.join("model.json");
+        let spec = std::fs::read_to_string(&path)
+            .map_err(|e| format!("cannot read {}: {e}", path.display()))
+            .and_then(|text| {
+                Spec::from_str(&text, Format::Json, &path.display().to_string())
+                    .map_err(|e| e.to_string())
+            });
+        match spec {
+            Ok(spec) => Self::from_spec(name, guid, spec, logging_on, sink),
+            Err(msg) => {
+                sink.log(
+                    name,
+                    Status::Error,
+                    Category::LogStatusError,
+                    &format!("fmi2Instantiate: {msg}"),
+                );
+                None
+            }
+        }
+    }
+
+    /// Like [`Instance::from_resources`] for an already parsed spec.
+    pub fn from_spec(
+        name: &str,
+        guid: &str,
+        spec: Spec,
+        logging_on: bool,
+        sink: Box<dyn LogSink>,
+    ) -> Option<Instance> {
+        let fail = |sink: &dyn LogSink, msg: String| {
+            sink.log(
+                name,
+                Status::Error,
+                Category::LogStatusError,
+                &format!("fmi2Instantiate: {msg}"),
+            );
+            None
+        };
+        let (def, settings) = match spec.lower() {
+            Ok(x) => x,
+            Err(e) => {
+                return fail(
+                    &*sink,
+                    format!("model '{}' cannot be lowered: {e}", spec.name),
+                )
+            }
+        };
+        let table = contract::table(&def, &settings);
+        let expected = super::guid::guid(&spec.canonical_json(), &table);
+        if guid != expected {
+            return fail(
+                &*sink,
+                format!("GUID mismatch: modelDescription.xml says {guid}, resources/model.json gives {expected} (the FMU was assembled from different builds)"),
+            );
+        }
+        let index = table
+            .vars
+            .iter()
+            .enumerate()
+            .map(|(i, v)| (v.vr, i))
+            .collect();
+        let n_inputs = table.vars.iter().filter_map(|v| match v.accessor {
+            Accessor::Input(i) => Some(i + 1),
+            _ => None,
+        });
+        let inputs = vec![0.0; n_inputs.max().unwrap_or(0)];
+        let start = spec.experiment.start;
+        let inst = Instance {
+            name: name.to_string(),
+            guid: expected,
+            spec,
+            base: (def.clone(), settings),
+            def,
+            settings,
+            table,
+            index,
+            inputs,
+            sim: None,
+            mode: Mode::Instantiated,
+            start_time: start,
+            stop_time: None,
+            last_successful_time: start,
+            filter: Filter::new(logging_on),
+            sink,
+        };
+        inst.event(&format!(
+            "fmi2Instantiate: model '{}', {} variables",
+            inst.spec.name,
+            inst.table.vars.len()
+        ));
+        Some(inst)
+    }
+
+    /// The current mode.
+    #[must_use]
+    pub fn mode(&self) -> Mode {
+        self.mode
+    }
+
+    /// The GUID this instance was checked against.
+    #[must_use]
+    pub fn guid(&self) -> &str {
+        &self.guid
+    }
+
+    /// The variable table.
+    #[must_use]
+    pub fn table(&self) -> &VariableTable {
+        &self.table
+    }
+
+    /// The simulation, from `fmi2EnterInitializationMode` on.
+    #[must_use]
+    pub fn simulation(&self) -> Option<&Simulation> {
+        self.sim.as_ref()
+    }
+
+    /// Sends a message through the sink if its category is enabled.
+    pub fn log(&self, status: Status, category: Category, message: &str) {
+        if self.filter.enabled(category) {
+            self.sink.log(&self.name, status, category, message);
+        }
+    }
+
+    fn event(&self, message: &str) {
+        self.log(Status::Ok, Category::LogEvents, message);
+    }
+
+    /// Checks the state machine for `op`.
+    ///
+    /// # Errors
+    /// [`FmuError::Poisoned`] after a panic, [`FmuError::IllegalCall`] otherwise.
+    pub fn check(&self, op: Op, function: &'static str) -> Result<(), FmuError> {
+        if self.mode == Mode::Fatal && op != Op::FreeInstance {
+            return Err(FmuError::Poisoned);
+        }
+        if allowed(op, self.mode) {
+            Ok(())
+        } else {
+            Err(FmuError::IllegalCall {
+                op: function,
+                mode: self.mode.name(),
+            })
+        }
+    }
+
+    /// Turns a result into the status returned to the importer: logs the reason of anything
+    /// but OK and escalates a failure to [`Mode::Error`].
+    pub fn finish(&mut self, function: &str, result: Result<Status, FmuError>) -> Status {
+        match result {
+            Ok(s) => s,
+            Err(e) => {
+                let status = e.status();
+                if matches!(e, FmuError::Failed(_)) {
+                    self.mode = Mode::Error;
+                }
+                self.log(
+                    status,
+                    Category::of_status(status),
+                    &format!("{function}: {e}"),
+                );
+                status
+            }
+        }
+    }
+
+    /// Marks the instance poisoned after a caught panic and logs `message` as fatal.
+    pub fn poison(&mut self, message: &str) {
+        self.mode = Mode::Fatal;
+        self.log(Status::Fatal, Category::LogStatusFatal, message);
+    }
+
+    /// `fmi2SetDebugLogging`: switches `categories` (all when empty).
+    ///
+    /// # Errors
+    /// An unknown category name; nothing changed.
+    pub fn set_debug_logging(&mut self, on: bool, categories: &[&str]) -> Result<Status, FmuError> {
+        self.check(Op::SetDebugLogging, "fmi2SetDebugLogging")?;
+        let mut filter = self.filter;
+        if categories.is_empty() {
+            filter.set_all(on);
+        }
+        for name in categories {
+            let c = Category::from_name(name).ok_or_else(|| {
+                let known: Vec<_> = Category::ALL.iter().map(|c| c.name()).collect();
+                FmuError::rejected(format!(
+                    "unknown log category '{name}' (declared: {})",
+                    known.join(", ")
+                ))
+            })?;
+            filter.set(c, on);
+        }
+        self.filter = filter;
+        Ok(Status::Ok)
+    }
+
+    /// `fmi2SetupExperiment`: start time and optional stop time; the tolerance is ignored (the
+    /// Newton tolerance is the parameter `solver.tolerance`).
+    ///
+    /// # Errors
+    /// Wrong mode or non-finite times.
+    pub fn setup_experiment(&mut self, start: f64, stop: Option<f64>) -> Result<Status, FmuError> {
+        self.check(Op::SetupExperiment, "fmi2SetupExperiment")?;
+        if !start.is_finite() || stop.is_some_and(|s| !s.is_finite() || s < start) {
+            return Err(FmuError::rejected(format!(
+                "invalid experiment: startTime {start}, stopTime {stop:?}"
+            )));
+        }
+        self.start_time = start;
+        self.stop_time = stop;
+        self.last_successful_time = start;
+        Ok(Status::Ok)
+    }
+
+    /// `fmi2EnterInitializationMode`: builds the simulation at the start time.
+    ///
+    /// # Errors
+    /// Wrong mode; a model that cannot be built (→ Error mode).
+    pub fn enter_initialization_mode(&mut self) -> Result<Status, FmuError> {
+        self.check(Op::EnterInitializationMode, "fmi2EnterInitializationMode")?;
+        let sim = self
+            .build(&self.def, &self.settings, &self.inputs)
+            .map_err(FmuError::Failed)?;
+        self.sim = Some(sim);
+        self.mode = Mode::InitializationMode;
+        self.event("fmi2EnterInitializationMode: simulation built");
+        Ok(Status::Ok)
+    }
+
+    /// Builds a simulation of `def` at the start time with the given input values.
+    pub(super) fn build(
+        &self,
+        def: &ModelDef,
+        settings: &SolverSettings,
+        inputs: &[f64],
+    ) -> Result<Simulation, String> {
+        let mut sim = Simulation::new(def, *settings, self.start_time)
+            .map_err(|e| format!("model cannot be built: {e}"))?;
+        let dst = sim.state_mut().inputs_mut();
+        let n = dst.len().min(inputs.len());
+        dst[..n].copy_from_slice(&inputs[..n]);
+        Ok(sim)
+    }
+
+    /// `fmi2ExitInitializationMode`.
+    ///
+    /// # Errors
+    /// Wrong mode.
+    pub fn exit_initialization_mode(&mut self) -> Result<Status, FmuError> {
+        self.check(Op::ExitInitializationMode, "fmi2ExitInitializationMode")?;
+        self.mode = Mode::StepComplete;
+        Ok(Status::Ok)
+    }
+
+    /// `fmi2Terminate`.
+    ///
+    /// # Errors
+    /// Wrong mode.
+    pub fn terminate(&mut self) -> Result<Status, FmuError> {
+        self.check(Op::Terminate, "fmi2Terminate")?;
+        self.mode = Mode::Terminated;
+        Ok(Status::Ok)
+    }
+
+    /// `fmi2Reset`: back to Instantiated mode with the spec's parameter and start values.
+    ///
+    /// # Errors
+    /// Only when poisoned.
+    pub fn reset(&mut self) -> Result<Status, FmuError> {
+        self.check(Op::Reset, "fmi2Reset")?;
+        (self.def, self.settings) = self.base.clone();
+        self.inputs.iter_mut().for_each(|u| *u = 0.0);
+        self.sim = None;
+        self.start_time = self.spec.experiment.start;
+        self.stop_time = None;
+        self.last_successful_time = self.start_time;
+        self.mode = Mode::Instantiated;
+        Ok(Status::Ok)
+    }
+
+    /// `fmi2DoStep(t, H)`: checks `t` against the instance time (relative tolerance 1e-9),
+    /// then advances by `H` in `ceil(H/max_step)` equal sub-steps landing on `t + H`.
+    ///
+    /// # Errors
+    /// Wrong mode, bad arguments (rejected, nothing changed); a failed sub-step gives
+    /// [`FmuError::Discard`] with the state rolled back to `t` (still usable).
+    pub fn do_step(&mut self, t: f64, h: f64) -> Result<Status, FmuError> {
+        self.check(Op::DoStep, "fmi2DoStep")?;
+        let stop = self.stop_time;
+        let sim = self
+            .sim
+            .as_mut()
+            .ok_or_else(|| FmuError::Failed("no simulation".into()))?;
+        let now = sim.time();
+        if !(h.is_finite() && h > 0.0) {
+            return Err(FmuError::rejected(format!(
+                "communicationStepSize must be positive and finite, got {h}"
+            )));
+        }
+        if !t.is_finite() || (t - now).abs() > TIME_RTOL * now.abs().max(t.abs()).max(h) {
+            return Err(FmuError::rejected(format!(
+                "currentCommunicationPoint {t} does not match the instance time {now}"
+            )));
+        }
+        if let Some(stop) = stop {
+            if t + h > stop + TIME_RTOL * stop.abs().max(h) {
+                return Err(FmuError::rejected(format!(
+                    "step to {} goes beyond stopTime {stop}",
+                    t + h
+                )));
+            }
+        }
+        // land on the master's time grid exactly
+        sim.state_mut().set_time(t);
+        match sim.advance(h) {
+            Ok(()) => {
+                self.last_successful_time = sim.time();
+                Ok(Status::Ok)
+            }
+            Err(e) => {
+                self.last_successful_time = e.last_good_time;
+                Err(FmuError::Discard(format!(
+                    "step from t = {t} by H = {h} failed ({}); state rolled back to t = {}, continue from there with a smaller step or other inputs",
+                    e.error, e.last_good_time
+                )))
+            }
+        }
+    }
+
+    /// `fmi2GetRealStatus(fmi2LastSuccessfulTime)`.
+    ///
+    /// # Errors
+    /// Wrong mode.
+    pub fn last_successful_time(&self) -> Result<f64, FmuError> {
+        self.check(Op::GetStatus, "fmi2GetRealStatus")?;
+        Ok(self.last_successful_time)
+    }
+
+    /// Whether the FMU wants the master to stop (`fmi2GetBooleanStatus(fmi2Terminated)`):
+    /// never, a triad model has no end.
+    ///
+    /// # Errors
+    /// Wrong mode.
+    pub fn terminated_status(&self) -> Result<bool, FmuError> {
+        self.check(Op::GetStatus, "fmi2GetBooleanStatus")?;
+        Ok(false)
+    }
+}

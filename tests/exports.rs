@@ -1,0 +1,58 @@
+//! The built cdylib exports every one of the 34 FMI 2.0 Co-Simulation functions under its exact
+//! name (fmi.md pitfall 1), checked by loading `target/<profile>/libtriad.so` with the system
+//! loader exactly as an importer would; and it depends on nothing beyond the C runtime
+//! (pitfall 10).
+
+mod fmu_support;
+
+use triad::ffi::types::FMI2_CS_FUNCTIONS;
+
+#[test]
+fn all_34_symbols_resolve() {
+    let path = fmu_support::cdylib();
+    // SAFETY (test): loading our own library runs no foreign initialisers.
+    let lib = unsafe { libloading::Library::new(&path) }
+        .unwrap_or_else(|e| panic!("{}: {e}", path.display()));
+    let mut missing = Vec::new();
+    for name in FMI2_CS_FUNCTIONS {
+        // SAFETY (test): only the address is looked up, the function is not called.
+        if unsafe { lib.get::<*const ()>(name.as_bytes()) }.is_err() {
+            missing.push(name);
+        }
+    }
+    assert!(missing.is_empty(), "missing exports: {missing:?}");
+    assert_eq!(FMI2_CS_FUNCTIONS.len(), 34);
+    let mut sorted = FMI2_CS_FUNCTIONS.to_vec();
+    sorted.sort_unstable();
+    sorted.dedup();
+    assert_eq!(sorted.len(), 34);
+}
+
+#[cfg(target_os = "linux")]
+#[test]
+fn the_shared_object_needs_only_the_c_runtime() {
+    let path = fmu_support::cdylib();
+    let out = std::process::Command::new("ldd")
+        .arg(&path)
+        .output()
+        .expect("ldd runs");
+    let text = String::from_utf8_lossy(&out.stdout);
+    let allowed = [
+        "linux-vdso",
+        "libc.so",
+        "libm.so",
+        "libgcc_s.so",
+        "ld-linux",
+    ];
+    let bad: Vec<&str> = text
+        .lines()
+        .map(str::trim)
+        .filter(|l| !l.is_empty() && !allowed.iter().any(|a| l.contains(a)))
+        .collect();
+    assert!(
+        bad.is_empty(),
+        "unexpected dependencies of {}:\n{}",
+        path.display(),
+        bad.join("\n")
+    );
+}

@@ -1,0 +1,369 @@
+//! Shared helpers of the FMU tests: a test model written to a temporary `resources/`, a Rust
+//! wrapper over the exported `fmi2*` functions, and a logger that captures messages.
+//!
+//! The logger ABI: `fmi2CallbackLogger` is C-variadic, and defining a variadic function is not
+//! stable Rust (1.95). triad always calls the logger as `logger(env, name, status, category,
+//! "%s", message)`, i.e. five fixed arguments and exactly one variadic `const char*`. On the
+//! x86-64 System V and AArch64 Linux ABIs a variadic pointer argument travels in the same
+//! register as the sixth fixed argument of a non-variadic function (x86-64 additionally sets
+//! `%al`, which a non-variadic callee ignores), so the test logger is declared with six fixed
+//! arguments and transmuted to the variadic type. This is test-only and NOT valid on Apple
+//! AArch64 (variadic arguments go on the stack there).
+#![allow(dead_code, unsafe_code, clippy::missing_safety_doc)]
+
+use std::ffi::{c_char, c_void, CStr, CString};
+use std::path::PathBuf;
+use std::sync::Mutex;
+use triad::ffi::common::*;
+use triad::ffi::cosim::*;
+use triad::ffi::getset::*;
+use triad::ffi::state::*;
+use triad::ffi::types::*;
+use triad::fmu::contract::{self, Format, Spec};
+use triad::variables::{Causality, VariableTable};
+
+/// A single actuated pendulum in the interface.md §2 format.
+pub const PENDULUM: &str = r#"
+name = "Pendulum"
+description = "One link on a revolute joint (FMU tests)"
+gravity = [0.0, 0.0, -9.81]
+
+[experiment]
+start = 0.0
+stop = 1.0
+step = 0.01
+
+[solver]
+max_step = 0.001
+order = 2
+tolerance = 1e-10
+
+[[body]]
+name = "link1"
+mass = 1.0
+com = [0.0, 0.0, -0.5]
+inertia = [0.0834, 0.0834, 1e-4]
+
+[[joint]]
+name = "shoulder"
+type = "revolute"
+parent = "world"
+child = "link1"
+axis = [0.0, 1.0, 0.0]
+actuated = true
+damping = 0.0
+initial = { q = 1.0, qd = 0.0 }
+"#;
+
+/// A model: its spec, table and GUID, and a temporary directory holding `resources/model.json`.
+pub struct TestModel {
+    pub spec: Spec,
+    pub table: VariableTable,
+    pub guid: String,
+    pub dir: tempfile::TempDir,
+}
+
+impl TestModel {
+    pub fn new(toml_text: &str) -> Self {
+        let spec = Spec::from_str(toml_text, Format::Toml, "test.toml").expect("test spec parses");
+        let (def, settings) = spec.lower().expect("test spec lowers");
+        let table = contract::table(&def, &settings);
+        let guid = triad::fmu::guid::guid(&spec.canonical_json(), &table);
+        let dir = tempfile::Builder::new()
+            .prefix("triad fmu test ")
+            .tempdir()
+            .expect("tempdir");
+        std::fs::create_dir_all(dir.path().join("resources")).expect("mkdir");
+        std::fs::write(
+            dir.path().join("resources/model.json"),
+            spec.canonical_json(),
+        )
+        .expect("write");
+        Self {
+            spec,
+            table,
+            guid,
+            dir,
+        }
+    }
+
+    pub fn pendulum() -> Self {
+        Self::new(PENDULUM)
+    }
+
+    pub fn resources(&self) -> PathBuf {
+        self.dir.path().join("resources")
+    }
+
+    pub fn uri(&self) -> String {
+        triad::fmu::resource::path_to_uri(&self.resources())
+    }
+
+    pub fn vr(&self, name: &str) -> u32 {
+        self.table
+            .vars
+            .iter()
+            .find(|v| v.name == name)
+            .unwrap_or_else(|| panic!("no variable {name}"))
+            .vr
+    }
+
+    pub fn vrs(&self, c: Causality) -> Vec<u32> {
+        self.table
+            .vars
+            .iter()
+            .filter(|v| v.causality == c && v.ty == triad::variables::VarType::Real)
+            .map(|v| v.vr)
+            .collect()
+    }
+}
+
+/// Captured log messages: (status, category, message).
+pub type Log = Mutex<Vec<(i32, String, String)>>;
+
+unsafe extern "C" fn capture(
+    env: *mut c_void,
+    _name: *const c_char,
+    status: i32,
+    category: *const c_char,
+    fmt: *const c_char,
+    msg: *const c_char,
+) {
+    let log = unsafe { &*(env as *const Log) };
+    let fmt = unsafe { CStr::from_ptr(fmt) }
+        .to_string_lossy()
+        .into_owned();
+    assert_eq!(
+        fmt, "%s",
+        "the logger must be called with the format \"%s\""
+    );
+    let cat = unsafe { CStr::from_ptr(category) }
+        .to_string_lossy()
+        .into_owned();
+    let msg = unsafe { CStr::from_ptr(msg) }
+        .to_string_lossy()
+        .into_owned();
+    log.lock().unwrap().push((status, cat, msg));
+}
+
+type Fixed6 = unsafe extern "C" fn(
+    *mut c_void,
+    *const c_char,
+    i32,
+    *const c_char,
+    *const c_char,
+    *const c_char,
+);
+
+pub fn callbacks(log: &Log) -> fmi2CallbackFunctions {
+    // SAFETY (test): see the module docs for why this ABI cast is sound on the tested targets.
+    let logger = unsafe {
+        std::mem::transmute::<
+            Fixed6,
+            unsafe extern "C" fn(
+                fmi2ComponentEnvironment,
+                fmi2String,
+                fmi2Status,
+                fmi2String,
+                fmi2String,
+                ...
+            ),
+        >(capture as Fixed6)
+    };
+    fmi2CallbackFunctions {
+        logger: Some(logger),
+        allocateMemory: None,
+        freeMemory: None,
+        stepFinished: None,
+        componentEnvironment: log as *const Log as *mut c_void,
+    }
+}
+
+/// One instance driven through the exported C functions; frees itself on drop.
+pub struct Fmu {
+    pub c: fmi2Component,
+    pub log: Box<Log>,
+    _callbacks: Box<fmi2CallbackFunctions>,
+}
+
+// the test drives each instance from one thread at a time
+unsafe impl Send for Fmu {}
+
+pub fn instantiate_with(
+    name: &str,
+    ty: fmi2Type,
+    guid: &str,
+    uri: Option<&str>,
+    logging_on: bool,
+) -> (fmi2Component, Box<Log>, Box<fmi2CallbackFunctions>) {
+    let log: Box<Log> = Box::new(Mutex::new(Vec::new()));
+    let cb = Box::new(callbacks(&log));
+    let name = CString::new(name).unwrap();
+    let guid = CString::new(guid).unwrap();
+    let uri = uri.map(|u| CString::new(u).unwrap());
+    let c = unsafe {
+        fmi2Instantiate(
+            name.as_ptr(),
+            ty,
+            guid.as_ptr(),
+            uri.as_ref().map_or(std::ptr::null(), |u| u.as_ptr()),
+            &*cb,
+            fmi2False,
+            i32::from(logging_on),
+        )
+    };
+    (c, log, cb)
+}
+
+impl Fmu {
+    pub fn new(m: &TestModel) -> Self {
+        Self::with_uri(m, &m.uri())
+    }
+
+    pub fn with_uri(m: &TestModel, uri: &str) -> Self {
+        let (c, log, cb) = instantiate_with("inst", fmi2CoSimulation, &m.guid, Some(uri), false);
+        assert!(
+            !c.is_null(),
+            "instantiate failed: {:?}",
+            log.lock().unwrap()
+        );
+        Self {
+            c,
+            log,
+            _callbacks: cb,
+        }
+    }
+
+    /// Instantiated, experiment set up at t = 0, initialised.
+    pub fn initialised(m: &TestModel) -> Self {
+        let f = Self::new(m);
+        assert_eq!(f.setup(0.0), fmi2OK);
+        assert_eq!(unsafe { fmi2EnterInitializationMode(f.c) }, fmi2OK);
+        assert_eq!(unsafe { fmi2ExitInitializationMode(f.c) }, fmi2OK);
+        f
+    }
+
+    pub fn setup(&self, start: f64) -> fmi2Status {
+        unsafe { fmi2SetupExperiment(self.c, fmi2False, 0.0, start, fmi2False, 0.0) }
+    }
+
+    pub fn set_real(&self, vrs: &[u32], vals: &[f64]) -> fmi2Status {
+        unsafe { fmi2SetReal(self.c, vrs.as_ptr(), vrs.len(), vals.as_ptr()) }
+    }
+
+    pub fn get_real(&self, vrs: &[u32]) -> (fmi2Status, Vec<f64>) {
+        let mut out = vec![f64::NAN; vrs.len()];
+        let s = unsafe { fmi2GetReal(self.c, vrs.as_ptr(), vrs.len(), out.as_mut_ptr()) };
+        (s, out)
+    }
+
+    pub fn step(&self, t: f64, h: f64) -> fmi2Status {
+        unsafe { fmi2DoStep(self.c, t, h, fmi2False) }
+    }
+
+    pub fn last_successful_time(&self) -> f64 {
+        let mut t = f64::NAN;
+        assert_eq!(
+            unsafe { fmi2GetRealStatus(self.c, fmi2LastSuccessfulTime, &mut t) },
+            fmi2OK
+        );
+        t
+    }
+
+    pub fn messages(&self) -> Vec<(i32, String, String)> {
+        self.log.lock().unwrap().clone()
+    }
+
+    /// The last logged message (panics when nothing was logged).
+    pub fn last_message(&self) -> String {
+        self.log
+            .lock()
+            .unwrap()
+            .last()
+            .map(|m| m.2.clone())
+            .expect("a log message")
+    }
+
+    pub fn serialize(&self) -> Vec<u8> {
+        let mut st: fmi2FMUstate = std::ptr::null_mut();
+        assert_eq!(unsafe { fmi2GetFMUstate(self.c, &mut st) }, fmi2OK);
+        let mut n = 0usize;
+        assert_eq!(
+            unsafe { fmi2SerializedFMUstateSize(self.c, st, &mut n) },
+            fmi2OK
+        );
+        let mut buf = vec![0u8; n];
+        assert_eq!(
+            unsafe { fmi2SerializeFMUstate(self.c, st, buf.as_mut_ptr().cast(), n) },
+            fmi2OK
+        );
+        assert_eq!(unsafe { fmi2FreeFMUstate(self.c, &mut st) }, fmi2OK);
+        assert!(st.is_null());
+        buf
+    }
+
+    pub fn deserialize(&self, bytes: &[u8]) -> fmi2Status {
+        let mut st: fmi2FMUstate = std::ptr::null_mut();
+        let s =
+            unsafe { fmi2DeSerializeFMUstate(self.c, bytes.as_ptr().cast(), bytes.len(), &mut st) };
+        if s != fmi2OK {
+            return s;
+        }
+        let s = unsafe { fmi2SetFMUstate(self.c, st) };
+        assert_eq!(unsafe { fmi2FreeFMUstate(self.c, &mut st) }, fmi2OK);
+        s
+    }
+}
+
+impl Drop for Fmu {
+    fn drop(&mut self) {
+        unsafe { fmi2FreeInstance(self.c) };
+    }
+}
+
+/// Deterministic input signal for run `k` at step `n`.
+pub fn input(k: usize, n: usize, i: usize) -> f64 {
+    0.3 * ((k + 1) as f64) * ((n as f64) * 0.05 + i as f64).sin()
+}
+
+/// Runs `steps` steps of size `h` with inputs `input(k, n, ·)`, returning every Real output and
+/// input after every step (bit patterns).
+pub fn run(m: &TestModel, k: usize, steps: usize, h: f64) -> Vec<u64> {
+    let f = Fmu::initialised(m);
+    let ins = m.vrs(Causality::Input);
+    let outs = m.vrs(Causality::Output);
+    let mut trace = Vec::new();
+    for n in 0..steps {
+        let u: Vec<f64> = (0..ins.len()).map(|i| input(k, n, i)).collect();
+        assert_eq!(f.set_real(&ins, &u), fmi2OK);
+        assert_eq!(f.step(n as f64 * h, h), fmi2OK, "{:?}", f.messages());
+        let (s, y) = f.get_real(&outs);
+        assert_eq!(s, fmi2OK);
+        trace.extend(y.iter().map(|x| x.to_bits()));
+    }
+    trace
+}
+
+/// The cdylib built next to the test executable (`target/<profile>/libtriad.so`).
+pub fn cdylib() -> PathBuf {
+    let exe = std::env::current_exe().unwrap();
+    let deps = exe.parent().unwrap();
+    let (file, _) = triad::package::cdylib_names();
+    let newest = [deps.parent().unwrap(), deps]
+        .into_iter()
+        .map(|d| d.join(file))
+        .filter_map(|p| Some((p.metadata().ok()?.modified().ok()?, p)))
+        .max();
+    if let Some((_, p)) = newest {
+        return p;
+    }
+    panic!("{file} not found next to {}", exe.display());
+}
+
+/// True while the mechanics core is the set-up placeholder (steps only advance time, outputs
+/// empty); physics-dependent assertions are skipped then.
+pub fn mechanics_is_placeholder(m: &TestModel) -> bool {
+    let (def, settings) = m.spec.lower().unwrap();
+    let sim = triad::sim::Simulation::new(&def, settings, 0.0).unwrap();
+    sim.state().outputs().joints.is_empty()
+}
