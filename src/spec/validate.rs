@@ -135,14 +135,11 @@ fn bodies(spec: &Spec, report: &mut Report) {
             Some(OrientationSpec::Matrix(m)) => {
                 let r = rows_to_matrix(m);
                 let err = (r.transpose() * r - crate::math::Mat3::identity()).amax();
-                if err > 1e-9 || r.determinant() < 0.0 {
-                    report.push(
-                        format!("{p}.orientation"),
-                        format!(
-                            "is not a rotation matrix (|RᵀR − I| = {err:.1e}, det = {:.3})",
-                            r.determinant()
-                        ),
-                    );
+                let at = format!("{p}.orientation");
+                if err > 1e-9 {
+                    report.push(at, format!("is not a rotation matrix: its rows are not orthonormal (largest entry of RᵀR − I is {err:.1e})"));
+                } else if r.determinant() < 0.0 {
+                    report.push(at, "is a reflection (determinant −1), not a rotation");
                 }
             }
             _ => {}
