@@ -133,7 +133,7 @@ const TEXT: Check = Check::Value(is::<String>);
 const EXPERIMENT: &[Field] = &[opt("start", NUM), opt("stop", NUM), opt("step", NUM)];
 const SOLVER: &[Field] = &[
     opt("max_step", NUM),
-    opt("order", Check::Value(is::<u8>)),
+    opt("order", Check::Value(is::<super::values::Order>)),
     opt("tolerance", NUM),
 ];
 const ORIGIN: &[Field] = &[opt("xyz", VEC3), opt("rpy", VEC3)];

@@ -132,6 +132,7 @@ pub struct SolverSpec {
     /// Largest internal step, s (default 1e-3).
     pub max_step: f64,
     /// 2 (energy–momentum midpoint scheme) or 4 (its triple-jump composition); default 2.
+    #[serde(deserialize_with = "values::order")]
     pub order: u8,
     /// Newton tolerance on the scaled residual, in (0, 1e-3); default 1e-10, below which
     /// conservation is at round-off.
