@@ -130,6 +130,12 @@ pub fn build(model: &Path, output: Option<&Path>) -> Result<(), CliError> {
             .into());
         }
     }
+    let folder_spec = model.join("spec.toml");
+    let model = if model.is_dir() && folder_spec.is_file() {
+        folder_spec.as_path()
+    } else {
+        model
+    };
     let spec = triad::spec::Spec::from_path(model)?;
     let out = output.map_or_else(
         || PathBuf::from(format!("{}.fmu", spec.name)),

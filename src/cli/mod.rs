@@ -106,7 +106,11 @@ pub fn load(model: &str) -> Result<Spec, SpecErrors> {
                 return Spec::from_path(&path.join(file));
             }
         }
-        return Err(SpecErrors::single(model, "", "is a folder without spec.toml or spec.json"));
+        return Err(SpecErrors::single(
+            model,
+            "",
+            "is a folder without spec.toml or spec.json",
+        ));
     }
     if !path.exists() && path.extension().is_none() {
         if let Some((name, text)) = bundled().iter().find(|(n, _)| *n == model) {
