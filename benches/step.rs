@@ -5,7 +5,7 @@ use criterion::{criterion_group, criterion_main, BenchmarkId, Criterion};
 use triad::mechanics::{step, Model, ModelDef, SolverSettings, State};
 
 #[path = "../tests/common/mod.rs"]
-#[allow(dead_code, clippy::all)]
+#[allow(clippy::all)]
 mod common;
 
 fn setup(def: &ModelDef) -> (Model, State) {
