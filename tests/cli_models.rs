@@ -6,7 +6,11 @@ use std::path::Path;
 use std::process::Command;
 
 fn triad(args: &[&str], cwd: &Path) -> std::process::Output {
-    Command::new(env!("CARGO_BIN_EXE_triad")).args(args).current_dir(cwd).output().unwrap()
+    Command::new(env!("CARGO_BIN_EXE_triad"))
+        .args(args)
+        .current_dir(cwd)
+        .output()
+        .unwrap()
 }
 
 #[test]
@@ -19,7 +23,11 @@ fn file_folder_and_shipped_name_are_the_same_model() {
         .iter()
         .map(|m| {
             let out = triad(&["check", m], tmp.path());
-            assert!(out.status.success(), "{m}: {}", String::from_utf8_lossy(&out.stderr));
+            assert!(
+                out.status.success(),
+                "{m}: {}",
+                String::from_utf8_lossy(&out.stderr)
+            );
             String::from_utf8(out.stdout).unwrap()
         })
         .collect();
@@ -29,7 +37,11 @@ fn file_folder_and_shipped_name_are_the_same_model() {
         assert_eq!(lines.next().unwrap(), "model FourBar: 3 bodies, 4 joints (1 loop-closing), 1 input, 71 outputs, 50 parameters");
         assert!(out.contains("note: joint 'coupler_rocker'"), "{out}");
     }
-    assert_eq!(std::fs::read_dir(tmp.path()).unwrap().count(), 0, "check wrote a file");
+    assert_eq!(
+        std::fs::read_dir(tmp.path()).unwrap().count(),
+        0,
+        "check wrote a file"
+    );
 }
 
 #[test]
@@ -37,5 +49,6 @@ fn build_wants_a_spec_file_for_a_shipped_name() {
     let tmp = tempfile::tempdir().unwrap();
     let out = triad(&["build", "pendulum"], tmp.path());
     assert_eq!(out.status.code(), Some(1));
-    assert!(String::from_utf8_lossy(&out.stderr).contains("triad build modelDescription/pendulum/spec.toml"));
+    assert!(String::from_utf8_lossy(&out.stderr)
+        .contains("triad build modelDescription/pendulum/spec.toml"));
 }
