@@ -118,6 +118,24 @@ pub fn describe(model: &str) -> Result<(), CliError> {
 
 /// Validates MODEL, then packages its FMU.
 pub fn build(model: &Path, output: Option<&Path>) -> Result<(), CliError> {
+    if !model.exists() && model.extension().is_none() {
+        let name = model.display();
+        if triad::spec::bundled()
+            .iter()
+            .any(|(n, _)| model.as_os_str() == *n)
+        {
+            return Err(format!(
+                "{name}: build needs the spec file: triad build modelDescription/{name}/spec.toml"
+            )
+            .into());
+        }
+    }
+    let folder_spec = model.join("spec.toml");
+    let model = if model.is_dir() && folder_spec.is_file() {
+        folder_spec.as_path()
+    } else {
+        model
+    };
     let spec = triad::spec::Spec::from_path(model)?;
     let out = output.map_or_else(
         || PathBuf::from(format!("{}.fmu", spec.name)),

@@ -35,6 +35,7 @@ pub enum Command {
         model: String,
     },
     /// Run MODEL natively and write every output variable every --step seconds as CSV.
+    #[command(allow_negative_numbers = true)]
     Simulate(simulate::SimulateArgs),
     /// Package an FMI 2.0 Co-Simulation FMU for MODEL.
     Build {
@@ -94,10 +95,23 @@ pub fn run(cli: Cli) -> ExitCode {
     }
 }
 
-/// Loads MODEL: a spec file, or, when no such file exists and MODEL has no extension, the
-/// shipped model of that name.
+/// Loads MODEL: a spec file, a folder holding `spec.toml`, or, when no such file exists and
+/// MODEL has no extension, the shipped model of that name.
 pub fn load(model: &str) -> Result<Spec, SpecErrors> {
     let path = Path::new(model);
+    // a model folder stands for its spec.toml (or spec.json)
+    if path.is_dir() {
+        for file in ["spec.toml", "spec.json"] {
+            if path.join(file).is_file() {
+                return Spec::from_path(&path.join(file));
+            }
+        }
+        return Err(SpecErrors::single(
+            model,
+            "",
+            "is a folder without spec.toml or spec.json",
+        ));
+    }
     if !path.exists() && path.extension().is_none() {
         if let Some((name, text)) = bundled().iter().find(|(n, _)| *n == model) {
             return Spec::from_str(

@@ -116,10 +116,11 @@ pub fn run(args: &SimulateArgs) -> Result<(), CliError> {
         .iter()
         .enumerate()
         .filter(|(_, v)| {
-            matches!(
-                v.accessor,
-                Accessor::JointQ { .. } | Accessor::Energy | Accessor::Work
-            )
+            args.plot.is_some()
+                && matches!(
+                    v.accessor,
+                    Accessor::JointQ { .. } | Accessor::Energy | Accessor::Work
+                )
         })
         .map(|(k, _)| k)
         .collect();

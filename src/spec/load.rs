@@ -4,7 +4,8 @@
 
 use serde::de::DeserializeOwned;
 
-use super::error::{did_you_mean, Report, SpecErrors};
+use super::error::{did_you_mean, Problem, Report, SpecErrors};
+use super::prune;
 use super::values::{Coords, InertiaSpec, OrientationSpec};
 use super::{Format, JointKind, Spec, JOINT_TYPES};
 
@@ -67,7 +68,7 @@ fn humanize(msg: &str) -> String {
         "expected 4 numbers [w, x, y, z]",
     )
     .replace("expected f64", "expected a number")
-    .replace("expected u8", "expected an integer")
+    .replace("expected u8", "expected 2 or 4")
     .replace("expected a boolean", "expected true or false")
     .replace("a sequence", "an array")
     .replace("invalid type: ", "")
@@ -132,7 +133,7 @@ const TEXT: Check = Check::Value(is::<String>);
 const EXPERIMENT: &[Field] = &[opt("start", NUM), opt("stop", NUM), opt("step", NUM)];
 const SOLVER: &[Field] = &[
     opt("max_step", NUM),
-    opt("order", Check::Value(is::<u8>)),
+    opt("order", Check::Value(is::<super::values::Order>)),
     opt("tolerance", NUM),
 ];
 const ORIGIN: &[Field] = &[opt("xyz", VEC3), opt("rpy", VEC3)];
@@ -187,10 +188,31 @@ fn join(path: &str, key: &str) -> String {
     }
 }
 
+/// Outcome of the structural pass: the problems, the optional fields to prune before
+/// deserialising, and whether something that cannot be pruned is wrong.
+#[derive(Default)]
+struct Structure {
+    report: Report,
+    prune: Vec<String>,
+    fatal: bool,
+}
+
+impl Structure {
+    /// A problem at `path`; prunable when the field is optional.
+    fn problem(&mut self, path: &str, message: String, optional: bool) {
+        self.report.push(path, message);
+        if optional && !path.is_empty() {
+            self.prune.push(path.to_string());
+        } else {
+            self.fatal = true;
+        }
+    }
+}
+
 /// Checks a table against its fields, reporting every problem.
-fn check_table(node: Node<'_>, path: &str, fields: &[Field], report: &mut Report) {
+fn check_table(node: Node<'_>, path: &str, fields: &[Field], optional: bool, s: &mut Structure) {
     let Some(entries) = node.entries() else {
-        report.push(path, "expected a table { ... }");
+        s.problem(path, "expected a table { ... }".into(), optional);
         return;
     };
     for (key, value) in &entries {
@@ -204,35 +226,36 @@ fn check_table(node: Node<'_>, path: &str, fields: &[Field], report: &mut Report
                 } else {
                     hint
                 };
-                report.push(here, format!("unknown field \"{key}\"{hint}"));
+                s.problem(&here, format!("unknown field \"{key}\"{hint}"), true);
             }
-            Some(field) => check_value(*value, &here, field.check, report),
+            Some(field) => check_value(*value, &here, field.check, !field.required, s),
         }
     }
     for field in fields.iter().filter(|f| f.required) {
         if !entries.iter().any(|(k, _)| *k == field.name) {
-            report.push(path, format!("missing field \"{}\"", field.name));
+            s.problem(path, format!("missing field \"{}\"", field.name), false);
         }
     }
 }
 
-fn check_value(node: Node<'_>, path: &str, check: Check, report: &mut Report) {
+fn check_value(node: Node<'_>, path: &str, check: Check, optional: bool, s: &mut Structure) {
     match check {
         Check::Value(f) => {
             if let Err(m) = f(node) {
-                report.push(path, m);
+                s.problem(path, m, optional);
             }
         }
-        Check::Table(fields) => check_table(node, path, fields, report),
+        Check::Table(fields) => check_table(node, path, fields, optional, s),
         Check::Tables(fields) => match node.elements() {
+            // array elements are never pruned (that would shift the indices of later problems)
             Some(items) => {
                 for (i, item) in items.into_iter().enumerate() {
-                    check_table(item, &format!("{path}[{i}]"), fields, report);
+                    check_table(item, &format!("{path}[{i}]"), fields, false, s);
                 }
             }
             None => {
                 let key = path.rsplit('.').next().unwrap_or(path);
-                report.push(path, format!("expected an array of tables (write [[{key}]] in TOML, \"{key}\": [ {{...}} ] in JSON)"));
+                s.problem(path, format!("expected an array of tables (write [[{key}]] in TOML, \"{key}\": [ {{...}} ] in JSON)"), optional);
             }
         },
     }
@@ -246,13 +269,43 @@ fn line_col(text: &str, offset: usize) -> (usize, usize) {
     (line, col)
 }
 
-/// Parses spec text into a [`Spec`], reporting syntax and structure problems (not consistency:
-/// see `validate`).
-pub(super) fn parse(text: &str, format: Format, origin: &str) -> Result<Spec, SpecErrors> {
-    let mut report = Report::default();
-    let spec = match format {
+/// A parsed spec: the shape problems, the spec itself when it could be read (after pruning
+/// badly shaped optional fields), and the pruned paths.
+#[derive(Debug)]
+pub(super) struct Parsed {
+    /// Shape problems, in document order.
+    pub(super) problems: Vec<Problem>,
+    /// The spec, when it could be deserialised.
+    pub(super) spec: Option<Spec>,
+    /// Fields removed before deserialising.
+    pub(super) pruned: Vec<String>,
+}
+
+fn finish(s: Structure, spec: Result<Spec, String>) -> Parsed {
+    let mut problems = s.report.problems;
+    let spec = match spec {
+        Ok(spec) => Some(spec),
+        Err(m) => {
+            if problems.is_empty() {
+                problems.push(Problem::new("", m));
+            }
+            None
+        }
+    };
+    Parsed {
+        problems,
+        spec,
+        pruned: s.prune,
+    }
+}
+
+/// Parses spec text, reporting syntax problems as errors and shape problems in [`Parsed`]
+/// (consistency is `validate`'s job).
+pub(super) fn parse(text: &str, format: Format, origin: &str) -> Result<Parsed, SpecErrors> {
+    let mut s = Structure::default();
+    match format {
         Format::Toml => {
-            let value: toml::Value = toml::from_str(text).map_err(|e| {
+            let mut value: toml::Value = toml::from_str(text).map_err(|e| {
                 let at = e.span().map(|s| line_col(text, s.start));
                 let path = at.map_or(String::new(), |(l, c)| format!("line {l}, column {c}"));
                 SpecErrors::single(
@@ -264,12 +317,18 @@ pub(super) fn parse(text: &str, format: Format, origin: &str) -> Result<Spec, Sp
                     ),
                 )
             })?;
-            check_table(Node::Toml(&value), "", TOP, &mut report);
-            report.finish(origin)?;
-            Node::Toml(&value).parse::<Spec>()
+            check_table(Node::Toml(&value), "", TOP, false, &mut s);
+            if s.fatal {
+                return Ok(finish(s, Err(String::new())));
+            }
+            for path in &s.prune {
+                prune::toml_field(&mut value, path);
+            }
+            let spec = Node::Toml(&value).parse::<Spec>();
+            Ok(finish(s, spec))
         }
         Format::Json => {
-            let value: serde_json::Value = serde_json::from_str(text).map_err(|e| {
+            let mut value: serde_json::Value = serde_json::from_str(text).map_err(|e| {
                 let msg = e.to_string();
                 let msg = msg.split(" at line ").next().unwrap_or(&msg).to_string();
                 SpecErrors::single(
@@ -278,12 +337,17 @@ pub(super) fn parse(text: &str, format: Format, origin: &str) -> Result<Spec, Sp
                     format!("JSON syntax error: {msg}"),
                 )
             })?;
-            check_table(Node::Json(&value), "", TOP, &mut report);
-            report.finish(origin)?;
-            Node::Json(&value).parse::<Spec>()
+            check_table(Node::Json(&value), "", TOP, false, &mut s);
+            if s.fatal {
+                return Ok(finish(s, Err(String::new())));
+            }
+            for path in &s.prune {
+                prune::json_field(&mut value, path);
+            }
+            let spec = Node::Json(&value).parse::<Spec>();
+            Ok(finish(s, spec))
         }
-    };
-    spec.map_err(|m| SpecErrors::single(origin, "", m))
+    }
 }
 
 #[cfg(test)]
@@ -306,7 +370,12 @@ parent = "world"
 child = "a"
 axis = [0, 1]
 "#;
-        let e = parse(text, Format::Toml, "m.toml").unwrap_err().to_string();
+        let p = parse(text, Format::Toml, "m.toml").unwrap();
+        let e = SpecErrors {
+            origin: "m.toml".into(),
+            problems: p.problems,
+        }
+        .to_string();
         for want in [
             "m.toml: bogus: unknown field",
             "body[0].mas: unknown field \"mas\"; did you mean \"mass\"?",

@@ -41,6 +41,7 @@ mod error;
 mod kinematics;
 mod load;
 mod lower;
+mod prune;
 mod validate;
 mod values;
 
@@ -131,6 +132,7 @@ pub struct SolverSpec {
     /// Largest internal step, s (default 1e-3).
     pub max_step: f64,
     /// 2 (energy–momentum midpoint scheme) or 4 (its triple-jump composition); default 2.
+    #[serde(deserialize_with = "values::order")]
     pub order: u8,
     /// Newton tolerance on the scaled residual, in (0, 1e-3); default 1e-10, below which
     /// conservation is at round-off.
@@ -333,9 +335,28 @@ impl Spec {
     /// Every problem found: syntax (with line and column), structure, and model consistency.
     #[allow(clippy::should_implement_trait)]
     pub fn from_str(text: &str, format: Format, origin: &str) -> Result<Spec, SpecErrors> {
-        let spec = load::parse(text, format, origin)?;
-        validate::validate(&spec, origin)?;
-        Ok(spec)
+        let parsed = load::parse(text, format, origin)?;
+        match parsed.spec {
+            Some(spec) if parsed.problems.is_empty() => {
+                validate::validate(&spec, origin)?;
+                Ok(spec)
+            }
+            spec => {
+                // shape problems first, then the consistency problems of what could be read
+                let mut problems = parsed.problems;
+                if let Some(spec) = spec {
+                    let more = validate::structure(&spec).problems;
+                    problems.extend(
+                        more.into_iter()
+                            .filter(|p| !parsed.pruned.iter().any(|q| prune::related(&p.path, q))),
+                    );
+                }
+                Err(SpecErrors {
+                    origin: origin.to_string(),
+                    problems,
+                })
+            }
+        }
     }
 
     /// Deterministic JSON of the whole spec (the FMU's `resources/model.json`, hashed into the

@@ -14,8 +14,9 @@ use super::{kinematics, lower, Spec};
 
 mod joints;
 
-/// Largest loop-closure violation accepted at the initial pose, relative to the model's size.
-const LOOP_TOLERANCE: f64 = 1e-8;
+/// Largest loop-closure violation accepted at the initial pose, m or 1: the mechanics' own
+/// tolerance, so that the spec check and `Model::new` agree.
+const LOOP_TOLERANCE: f64 = crate::mechanics::loops::LOOP_TOLERANCE;
 
 /// `[A-Za-z_][A-Za-z0-9_]*`.
 pub(crate) fn is_identifier(s: &str) -> bool {
@@ -134,14 +135,11 @@ fn bodies(spec: &Spec, report: &mut Report) {
             Some(OrientationSpec::Matrix(m)) => {
                 let r = rows_to_matrix(m);
                 let err = (r.transpose() * r - crate::math::Mat3::identity()).amax();
-                if err > 1e-9 || r.determinant() < 0.0 {
-                    report.push(
-                        format!("{p}.orientation"),
-                        format!(
-                            "is not a rotation matrix (|RᵀR − I| = {err:.1e}, det = {:.3})",
-                            r.determinant()
-                        ),
-                    );
+                let at = format!("{p}.orientation");
+                if err > 1e-9 {
+                    report.push(at, format!("is not a rotation matrix: its rows are not orthonormal (largest entry of RᵀR − I is {err:.1e})"));
+                } else if r.determinant() < 0.0 {
+                    report.push(at, "is a reflection (determinant −1), not a rotation");
                 }
             }
             _ => {}
@@ -164,7 +162,12 @@ fn inertia(report: &mut Report, path: &str, b: &super::BodySpec) {
     let eig = SymmetricEigen::new(m).eigenvalues;
     let mut e = [eig[0], eig[1], eig[2]];
     e.sort_by(f64::total_cmp);
-    if e[0] <= 0.0 {
+    if e.iter().any(|x| !x.is_finite()) {
+        report.push(
+            path,
+            "is too large to handle (its principal moments overflow)",
+        );
+    } else if e[0] <= 0.0 {
         report.push(
             path,
             format!(
@@ -245,23 +248,13 @@ pub(super) fn validate(spec: &Spec, origin: &str) -> Result<(), SpecErrors> {
         return report.finish(origin);
     }
     let (def, settings) = lower::build(spec);
-    let size = spec
-        .joint
-        .iter()
-        .flat_map(|j| {
-            j.origin
-                .xyz
-                .into_iter()
-                .chain(j.child_origin.map_or([0.0; 3], |o| o.xyz))
-        })
-        .fold(1.0_f64, |a, x| a.max(x.abs()));
     for (k, residual) in kinematics::loop_residuals(&def) {
-        if residual.is_nan() || residual > LOOP_TOLERANCE * size {
+        if residual.is_nan() || residual > LOOP_TOLERANCE {
             let name = &def.joints[k].name;
             let i = spec.joint_index(name).unwrap_or(k);
             report.push(
                 format!("joint[{i}]"),
-                format!("loop-closing joint \"{name}\" is violated by the initial pose by {residual:.3e}: choose the tree joints' initial q so that the loop closes (child_origin must meet origin)"),
+                format!("loop-closing joint \"{name}\" is violated by the initial pose by {residual:.3e} (tolerance {LOOP_TOLERANCE:e}): choose the tree joints' initial q so that the loop closes (child_origin must meet origin)"),
             );
         }
     }

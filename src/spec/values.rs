@@ -254,3 +254,22 @@ mod tests {
         assert_eq!(c, Coords::List(vec![1.0, 2.0]));
     }
 }
+
+/// `solver.order`: an integer, also accepted as an integral float (`2.0`) since JSON writers
+/// often produce those.
+pub(crate) fn order<'de, D: Deserializer<'de>>(d: D) -> Result<u8, D::Error> {
+    match d.deserialize_any(RawVisitor)? {
+        Raw::Number(x) if x.fract() == 0.0 && (0.0..=255.0).contains(&x) => Ok(x as u8),
+        Raw::Number(x) => Err(de::Error::custom(format!("expected 2 or 4, found {x}"))),
+        _ => Err(de::Error::custom("expected 2 or 4, found an array")),
+    }
+}
+
+/// Wrapper used by the structural pass to check `solver.order` on its own (the value itself is
+/// read with the whole spec).
+#[derive(Deserialize)]
+pub(crate) struct Order(
+    #[serde(deserialize_with = "order")]
+    #[allow(dead_code)]
+    u8,
+);

@@ -1,0 +1,54 @@
+//! How MODEL is named on the command line: a spec file, a model folder (its `spec.toml`), or
+//! the name of a shipped model; `check` prints `ok`, a summary and the model's notes, and
+//! writes nothing.
+
+use std::path::Path;
+use std::process::Command;
+
+fn triad(args: &[&str], cwd: &Path) -> std::process::Output {
+    Command::new(env!("CARGO_BIN_EXE_triad"))
+        .args(args)
+        .current_dir(cwd)
+        .output()
+        .unwrap()
+}
+
+#[test]
+fn file_folder_and_shipped_name_are_the_same_model() {
+    let root = Path::new(env!("CARGO_MANIFEST_DIR"));
+    let tmp = tempfile::tempdir().unwrap();
+    let file = root.join("modelDescription/four_bar/spec.toml");
+    let folder = root.join("modelDescription/four_bar");
+    let outs: Vec<String> = [file.to_str().unwrap(), folder.to_str().unwrap(), "four_bar"]
+        .iter()
+        .map(|m| {
+            let out = triad(&["check", m], tmp.path());
+            assert!(
+                out.status.success(),
+                "{m}: {}",
+                String::from_utf8_lossy(&out.stderr)
+            );
+            String::from_utf8(out.stdout).unwrap()
+        })
+        .collect();
+    for out in &outs {
+        let mut lines = out.lines();
+        assert!(lines.next().unwrap().ends_with(": ok"));
+        assert_eq!(lines.next().unwrap(), "model FourBar: 3 bodies, 4 joints (1 loop-closing), 1 input, 71 outputs, 50 parameters");
+        assert!(out.contains("note: joint 'coupler_rocker'"), "{out}");
+    }
+    assert_eq!(
+        std::fs::read_dir(tmp.path()).unwrap().count(),
+        0,
+        "check wrote a file"
+    );
+}
+
+#[test]
+fn build_wants_a_spec_file_for_a_shipped_name() {
+    let tmp = tempfile::tempdir().unwrap();
+    let out = triad(&["build", "pendulum"], tmp.path());
+    assert_eq!(out.status.code(), Some(1));
+    assert!(String::from_utf8_lossy(&out.stderr)
+        .contains("triad build modelDescription/pendulum/spec.toml"));
+}
