@@ -107,7 +107,8 @@ fn main() -> Result<(), Box<dyn Error>> {
         }
     }
     header.extend(vheader);
-    header.push("energy".into());
+    // the engine's own invariants (extra columns, ignored by the harness's metrics)
+    header.extend(["energy", "work", "Lx", "Ly", "Lz"].map(String::from));
 
     // controller: tau = kp (q_set - q) - kd v + tau_ff, once per step (zero-order hold)
     let ctrl = &model["controller"];
@@ -218,6 +219,6 @@ fn row(sim: &Simulation, columns: &[Column], t: f64) -> Vec<f64> {
         }
     }
     q.extend(v);
-    q.push(out.energy);
+    q.extend([out.energy, out.work, out.l.x, out.l.y, out.l.z]);
     q
 }
