@@ -287,6 +287,10 @@ fn parameters_before_initialisation_and_tunables_between_steps() {
     );
     assert_eq!(unsafe { fmi2EnterInitializationMode(f.c) }, fmi2OK);
     assert_eq!(f.get_real(&[ms]).1, vec![0.0005]);
+    // outputs (the InitialUnknowns) are available in Initialization Mode
+    let (s, y) = f.get_real(&m.vrs(Causality::Output));
+    assert_eq!(s, fmi2OK);
+    assert!(y.iter().all(|x| x.is_finite()));
     assert_eq!(
         f.set_real(&[ms], &[0.002]),
         fmi2OK,
