@@ -322,10 +322,22 @@ fn a_failure_escalates_to_error_mode_and_reset_recovers() {
     let ixx = m.vr("body.link1.inertia[1,1]");
     assert_eq!(f.set_real(&[ixx], &[100.0]), fmi2OK);
     assert_eq!(unsafe { fmi2EnterInitializationMode(f.c) }, fmi2Error);
-    assert!(f.last_message().contains("cannot be built"), "{}", f.last_message());
+    assert!(
+        f.last_message().contains("cannot be built"),
+        "{}",
+        f.last_message()
+    );
     assert_eq!(unsafe { fmi2ExitInitializationMode(f.c) }, fmi2Error);
-    assert!(f.last_message().contains("Error mode"), "{}", f.last_message());
-    assert_eq!(f.set_real(&[ixx], &[0.0834]), fmi2Error, "no sets in Error mode");
+    assert!(
+        f.last_message().contains("Error mode"),
+        "{}",
+        f.last_message()
+    );
+    assert_eq!(
+        f.set_real(&[ixx], &[0.0834]),
+        fmi2Error,
+        "no sets in Error mode"
+    );
     // reset: back to the spec's values, usable again
     assert_eq!(unsafe { fmi2Reset(f.c) }, fmi2OK);
     assert_eq!(unsafe { fmi2EnterInitializationMode(f.c) }, fmi2OK);
