@@ -5,11 +5,16 @@ use criterion::{criterion_group, criterion_main, BenchmarkId, Criterion};
 use triad::mechanics::{step, Model, ModelDef, SolverSettings, State};
 
 #[path = "../tests/common/mod.rs"]
-#[allow(dead_code, clippy::all)]
+#[allow(clippy::all)]
 mod common;
 
 fn setup(def: &ModelDef) -> (Model, State) {
-    let s = SolverSettings { max_step: 1e-3, order: 2, tolerance: 1e-10, max_iterations: 20 };
+    let s = SolverSettings {
+        max_step: 1e-3,
+        order: 2,
+        tolerance: 1e-10,
+        max_iterations: 20,
+    };
     let m = Model::new(def, s).expect("model");
     let st = State::new(&m);
     (m, st)
@@ -37,7 +42,10 @@ fn bench(c: &mut Criterion) {
         for _ in 0..100 {
             it += step(&m, &mut s, 1e-3).expect("step").iterations;
         }
-        eprintln!("{name}: {:.2} Newton iterations per step", it as f64 / 100.0);
+        eprintln!(
+            "{name}: {:.2} Newton iterations per step",
+            it as f64 / 100.0
+        );
     }
     g.finish();
 }

@@ -27,11 +27,26 @@ fn top(w_world: Vec3) -> ModelDef {
     let (m, j1, j3, l) = data();
     let alpha0 = std::f64::consts::FRAC_PI_3;
     let r0 = rot([alpha0, 0.0, 0.0]);
-    let mut j = joint("tip", JointType::Spherical, None, 0, Vec3::zeros(), Vec3::z());
-    j.initial = JointInitial::Spherical { quat: matrix_to_quat(&r0), w: r0.transpose() * w_world };
+    let mut j = joint(
+        "tip",
+        JointType::Spherical,
+        None,
+        0,
+        Vec3::zeros(),
+        Vec3::z(),
+    );
+    j.initial = JointInitial::Spherical {
+        quat: matrix_to_quat(&r0),
+        w: r0.transpose() * w_world,
+    };
     ModelDef {
         gravity: Vec3::new(0.0, 0.0, -G),
-        bodies: vec![body("top", m, Vec3::new(0.0, 0.0, l), Mat3::from_diagonal(&Vec3::new(j1, j1, j3)))],
+        bodies: vec![body(
+            "top",
+            m,
+            Vec3::new(0.0, 0.0, l),
+            Mat3::from_diagonal(&Vec3::new(j1, j1, j3)),
+        )],
         joints: vec![j],
         loads: vec![],
         free_bodies: vec![],
@@ -52,7 +67,11 @@ fn b5a_steady_precession() {
     assert!((ws - 135.6).abs() < 1e-3, "spin {ws}");
     let r0 = rot([alpha0, 0.0, 0.0]);
     let w0 = Vec3::z() * wp + r0.column(2) * ws;
-    let expected = [(0.004, 7.55e-3, 1.47e-2), (0.002, 1.90e-3, 3.70e-3), (0.001, 4.76e-4, 9.26e-4)];
+    let expected = [
+        (0.004, 7.55e-3, 1.47e-2),
+        (0.002, 1.90e-3, 3.70e-3),
+        (0.001, 4.76e-4, 9.26e-4),
+    ];
     for (h, dev_ref, rate_ref) in expected {
         let (md, mut s) = build(&top(w0), settings(h, 2));
         let (e0, lz0) = (s.outputs().energy, s.outputs().l.z);
@@ -99,7 +118,11 @@ fn b5b_released_top_nutation() {
     let (u1, u2) = ((-qb - disc) / (2.0 * qa), (-qb + disc) / (2.0 * qa));
     let th_max = u1.acos();
     let period = 4.0 * ellipk((u0 - u1) / (u2 - u1)) / (beta * (u2 - u1)).sqrt();
-    assert!((th_max.to_degrees() - 70.3931).abs() < 1e-4, "{}", th_max.to_degrees());
+    assert!(
+        (th_max.to_degrees() - 70.3931).abs() < 1e-4,
+        "{}",
+        th_max.to_degrees()
+    );
     assert!((period - 0.191934).abs() < 1e-6, "{period}");
     let r0 = rot([alpha0, 0.0, 0.0]);
     let mut errs = Vec::new();
@@ -125,7 +148,10 @@ fn b5b_released_top_nutation() {
         let e_th = (thm.iter().sum::<f64>() / thm.len() as f64 - th_max).abs();
         let e_per = (per - period).abs();
         eprintln!("b5b h={h}: θ_max error {e_th:e} (ref {th_ref:e}), period error {e_per:e} (ref {per_ref:e})");
-        assert!(e_th < 1.5 * th_ref && e_per < 1.5 * per_ref, "{e_th:e} {e_per:e}");
+        assert!(
+            e_th < 1.5 * th_ref && e_per < 1.5 * per_ref,
+            "{e_th:e} {e_per:e}"
+        );
         errs.push((e_th, e_per));
     }
     let p = (errs[0].0 / errs[1].0).log2();

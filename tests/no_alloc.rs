@@ -54,7 +54,13 @@ fn step_does_not_allocate() {
     let mut fb = four_bar(1.0, 3.0);
     fb.joints[0].actuated = true;
     fb.joints[1].damping = 0.1;
-    for (def, order) in [(b7.clone(), 2), (b7, 4), (heavy_top(), 4), (chain(10), 2), (fb, 4)] {
+    for (def, order) in [
+        (b7.clone(), 2),
+        (b7, 4),
+        (heavy_top(), 4),
+        (chain(10), 2),
+        (fb, 4),
+    ] {
         let (m, mut s) = build(&def, settings(0.01, order));
         if !s.inputs().is_empty() {
             s.inputs_mut()[0] = 0.5;

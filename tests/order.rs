@@ -17,14 +17,23 @@ fn final_q(h: f64, order: u8) -> Vec<f64> {
 }
 
 fn err(a: &[f64], b: &[f64]) -> f64 {
-    a.iter().zip(b).map(|(x, y)| (x - y).abs()).fold(0.0, f64::max)
+    a.iter()
+        .zip(b)
+        .map(|(x, y)| (x - y).abs())
+        .fold(0.0, f64::max)
 }
 
 #[test]
 fn double_pendulum_orders_two_and_four() {
     let reference = final_q(1.0 / 2560.0, 4);
-    let e2: Vec<f64> = [1.0 / 80.0, 1.0 / 160.0].iter().map(|&h| err(&final_q(h, 2), &reference)).collect();
-    let e4: Vec<f64> = [1.0 / 80.0, 1.0 / 160.0].iter().map(|&h| err(&final_q(h, 4), &reference)).collect();
+    let e2: Vec<f64> = [1.0 / 80.0, 1.0 / 160.0]
+        .iter()
+        .map(|&h| err(&final_q(h, 2), &reference))
+        .collect();
+    let e4: Vec<f64> = [1.0 / 80.0, 1.0 / 160.0]
+        .iter()
+        .map(|&h| err(&final_q(h, 4), &reference))
+        .collect();
     let (p2, p4) = ((e2[0] / e2[1]).log2(), (e4[0] / e4[1]).log2());
     eprintln!("order 2: errors {e2:?} p = {p2}; order 4: errors {e4:?} p = {p4}");
     assert!((p2 - 2.0).abs() < 0.1, "order 2 observed {p2}");

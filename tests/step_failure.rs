@@ -14,7 +14,12 @@ fn bits(x: &[f64]) -> Vec<u64> {
 #[test]
 fn no_convergence_leaves_state_bit_identical() {
     let def = double_pendulum();
-    let st = SolverSettings { max_step: 0.5, order: 2, tolerance: 1e-12, max_iterations: 1 };
+    let st = SolverSettings {
+        max_step: 0.5,
+        order: 2,
+        tolerance: 1e-12,
+        max_iterations: 1,
+    };
     let (m, mut s) = build(&def, st);
     // advance a little with a normal model so that multipliers and velocities are non-trivial
     let good = Model::new(&def, settings(0.01, 2)).unwrap();
@@ -38,7 +43,13 @@ fn no_convergence_leaves_state_bit_identical() {
 fn huge_input_and_non_finite_input_leave_state_bit_identical() {
     let mut def = double_pendulum();
     def.joints[0].actuated = true;
-    let (m, mut s) = build(&def, SolverSettings { max_iterations: 3, ..settings(0.05, 4) });
+    let (m, mut s) = build(
+        &def,
+        SolverSettings {
+            max_iterations: 3,
+            ..settings(0.05, 4)
+        },
+    );
     for _ in 0..5 {
         step(&m, &mut s, 0.05).unwrap();
     }
@@ -46,7 +57,10 @@ fn huge_input_and_non_finite_input_leave_state_bit_identical() {
     s.inputs_mut()[0] = 1e12;
     let with_input = bits(&s.snapshot());
     let r = step(&m, &mut s, 0.05);
-    assert!(r.is_err(), "a 1e12 N·m motor torque must not converge in 3 iterations: {r:?}");
+    assert!(
+        r.is_err(),
+        "a 1e12 N·m motor torque must not converge in 3 iterations: {r:?}"
+    );
     assert_eq!(with_input, bits(&s.snapshot()));
     s.inputs_mut()[0] = f64::NAN;
     let with_nan = bits(&s.snapshot());

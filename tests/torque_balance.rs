@@ -13,7 +13,10 @@ use triad::mechanics::{step, Model, State};
 fn box_body(r0: [f64; 3], w_body: Vec3, v0: Vec3, order: u8, h: f64) -> (Model, State) {
     let j = box_inertia(10.0, 1.0, 0.6, 0.3);
     let r = rot(r0);
-    build(&free_body(10.0, j, r, r * w_body, v0, true, false), settings(h, order))
+    build(
+        &free_body(10.0, j, r, r * w_body, v0, true, false),
+        settings(h, order),
+    )
 }
 
 /// B2: constant torque 0.7 e₃ about the principal axis e₃ from ω₀ = e₃.
@@ -42,7 +45,10 @@ fn b2_constant_torque_about_principal_axis() {
         let (psi_err, l3) = b2(*h, 2);
         eprintln!("b2 h={h}: psi error {psi_err:e}, L3 {l3:e}");
         assert!(l3 < tol(1e-12), "L3 not exact: {l3:e}");
-        assert!(rel(psi_err.abs(), e, 1e-12) < 0.02, "psi error {psi_err:e} vs {e:e}");
+        assert!(
+            rel(psi_err.abs(), e, 1e-12) < 0.02,
+            "psi error {psi_err:e} vs {e:e}"
+        );
         errs.push(psi_err.abs());
     }
     let p = (errs[1] / errs[2]).log2();
@@ -54,14 +60,26 @@ fn b2_constant_torque_about_principal_axis() {
 /// B3 pulse; returns (max per-step |ΔL − h m| / |L|, final |L − L₀ − ½(2,−1,4)| / |L₀|).
 fn b3(order: u8, naive: bool) -> (f64, f64) {
     let h = 0.05;
-    let (mut m, mut s) = box_body([0.3, -0.5, 0.2], Vec3::new(0.2, 3.0, 0.3), Vec3::new(0.1, 0.0, -0.2), order, h);
+    let (mut m, mut s) = box_body(
+        [0.3, -0.5, 0.2],
+        Vec3::new(0.2, 3.0, 0.3),
+        Vec3::new(0.1, 0.0, -0.2),
+        order,
+        h,
+    );
     m.set_naive_torque(naive);
     let dir = Vec3::new(2.0, -1.0, 4.0);
     let l0 = s.outputs().l;
     let mut worst = 0.0_f64;
     for k in 0..100 {
         let tm = (k as f64 + 0.5) * h;
-        let hat = if tm <= 0.5 { 2.0 * tm } else if tm <= 1.0 { 2.0 * (1.0 - tm) } else { 0.0 };
+        let hat = if tm <= 0.5 {
+            2.0 * tm
+        } else if tm <= 1.0 {
+            2.0 * (1.0 - tm)
+        } else {
+            0.0
+        };
         let torque = dir * hat;
         s.inputs_mut().copy_from_slice(torque.as_slice());
         let before = s.outputs().l;
@@ -76,9 +94,15 @@ fn b3_torque_pulse_consistent_vs_naive() {
     for order in [2, 4] {
         let (step_err, final_err) = b3(order, false);
         eprintln!("b3 order {order}: per-step {step_err:e}, final {final_err:e}");
-        assert!(step_err < tol(1e-12) && final_err < tol(1e-12), "order {order}: {step_err:e} {final_err:e}");
+        assert!(
+            step_err < tol(1e-12) && final_err < tol(1e-12),
+            "order {order}: {step_err:e} {final_err:e}"
+        );
     }
     let (step_err, final_err) = b3(2, true);
     eprintln!("b3 naive: per-step {step_err:e}, final {final_err:e}");
-    assert!(final_err > 1e-3 && step_err > 1e-5, "naive representation should violate the balance");
+    assert!(
+        final_err > 1e-3 && step_err > 1e-5,
+        "naive representation should violate the balance"
+    );
 }

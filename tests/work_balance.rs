@@ -12,10 +12,21 @@ use triad::mechanics::{step, BodyLoadDef, FreeBodyInitial, JointInitial, JointTy
 /// B7: spatial double pendulum (ground spherical + revolute with motor and torsional spring).
 fn b7(damping: f64) -> ModelDef {
     let mut sph = joint("s", JointType::Spherical, None, 0, Vec3::zeros(), Vec3::z());
-    let r1 = triad::math::exp_so3(&Vec3::new(0.0, -0.6, 0.0)) * triad::math::exp_so3(&Vec3::new(0.4, 0.0, 0.0));
-    sph.initial = JointInitial::Spherical { quat: triad::math::matrix_to_quat(&r1), w: Vec3::new(0.5, 1.0, -0.3) };
+    let r1 = triad::math::exp_so3(&Vec3::new(0.0, -0.6, 0.0))
+        * triad::math::exp_so3(&Vec3::new(0.4, 0.0, 0.0));
+    sph.initial = JointInitial::Spherical {
+        quat: triad::math::matrix_to_quat(&r1),
+        w: Vec3::new(0.5, 1.0, -0.3),
+    };
     sph.damping = damping;
-    let mut rev = joint("r", JointType::Revolute, Some(0), 1, Vec3::new(1.0, 0.0, 0.0), Vec3::z());
+    let mut rev = joint(
+        "r",
+        JointType::Revolute,
+        Some(0),
+        1,
+        Vec3::new(1.0, 0.0, 0.0),
+        Vec3::z(),
+    );
     set_q(&mut rev, &[0.7], &[2.0]);
     rev.actuated = true;
     rev.stiffness = 5.0;
@@ -23,8 +34,18 @@ fn b7(damping: f64) -> ModelDef {
     ModelDef {
         gravity: Vec3::new(0.0, 0.0, -9.81),
         bodies: vec![
-            body("b1", 2.0, Vec3::new(0.5, 0.0, 0.0), box_inertia(2.0, 1.0, 0.1, 0.1)),
-            body("b2", 1.5, Vec3::new(0.4, 0.0, 0.0), box_inertia(1.5, 0.8, 0.1, 0.1)),
+            body(
+                "b1",
+                2.0,
+                Vec3::new(0.5, 0.0, 0.0),
+                box_inertia(2.0, 1.0, 0.1, 0.1),
+            ),
+            body(
+                "b2",
+                1.5,
+                Vec3::new(0.4, 0.0, 0.0),
+                box_inertia(1.5, 0.8, 0.1, 0.1),
+            ),
         ],
         joints: vec![sph, rev],
         loads: vec![],
@@ -32,7 +53,13 @@ fn b7(damping: f64) -> ModelDef {
     }
 }
 
-fn balance(def: &ModelDef, h: f64, order: u8, n: usize, input: impl Fn(f64, &mut [f64])) -> (f64, f64) {
+fn balance(
+    def: &ModelDef,
+    h: f64,
+    order: u8,
+    n: usize,
+    input: impl Fn(f64, &mut [f64]),
+) -> (f64, f64) {
     let (m, mut s) = build(def, settings(h, order));
     let e0 = s.outputs().energy;
     let mut scale = e0.abs();
@@ -50,7 +77,9 @@ fn balance(def: &ModelDef, h: f64, order: u8, n: usize, input: impl Fn(f64, &mut
 #[test]
 fn b7_motor_spring_energy_balance() {
     for (order, c) in [(2, 0.0), (4, 0.0), (2, 0.3), (4, 0.3)] {
-        let (err, w) = balance(&b7(c), 0.01, order, 1000, |t, u| u[0] = 2.0 * (2.0 * t).sin());
+        let (err, w) = balance(&b7(c), 0.01, order, 1000, |t, u| {
+            u[0] = 2.0 * (2.0 * t).sin()
+        });
         eprintln!("b7 order {order} damping {c}: |E − E0 − W| rel {err:e} (W = {w})");
         assert!(err < tol(1e-10), "order {order}, c {c}: {err:e}");
         assert!(w.abs() > 1e-3, "the inputs must do work");
@@ -60,16 +89,40 @@ fn b7_motor_spring_energy_balance() {
 /// Free-floating pair: prismatic with actuator, spring and damper on a free body that also
 /// carries a body torque and force; a spherical-jointed third body with damping.
 fn floating() -> ModelDef {
-    let mut pri = joint("p", JointType::Prismatic, Some(0), 1, Vec3::new(0.3, -0.1, 0.2), Vec3::new(0.0, 0.6, 0.8));
+    let mut pri = joint(
+        "p",
+        JointType::Prismatic,
+        Some(0),
+        1,
+        Vec3::new(0.3, -0.1, 0.2),
+        Vec3::new(0.0, 0.6, 0.8),
+    );
     set_q(&mut pri, &[0.4], &[0.5]);
     pri.actuated = true;
     pri.stiffness = 20.0;
     pri.damping = 0.5;
-    let mut sph = joint("s", JointType::Spherical, Some(0), 2, Vec3::new(-0.3, 0.2, 0.0), Vec3::z());
-    sph.initial = JointInitial::Spherical { quat: [0.9, 0.2, -0.1, 0.3], w: Vec3::new(1.0, -2.0, 0.5) };
+    let mut sph = joint(
+        "s",
+        JointType::Spherical,
+        Some(0),
+        2,
+        Vec3::new(-0.3, 0.2, 0.0),
+        Vec3::z(),
+    );
+    sph.initial = JointInitial::Spherical {
+        quat: [0.9, 0.2, -0.1, 0.3],
+        w: Vec3::new(1.0, -2.0, 0.5),
+    };
     sph.actuated = true;
     sph.damping = 0.2;
-    let mut cyl = joint("c", JointType::Cylindrical, Some(1), 3, Vec3::new(0.1, 0.1, 0.1), Vec3::x());
+    let mut cyl = joint(
+        "c",
+        JointType::Cylindrical,
+        Some(1),
+        3,
+        Vec3::new(0.1, 0.1, 0.1),
+        Vec3::x(),
+    );
     set_q(&mut cyl, &[0.2, 0.5], &[0.3, -1.0]);
     cyl.actuated = true;
     cyl.stiffness = 3.0;
@@ -77,13 +130,37 @@ fn floating() -> ModelDef {
     ModelDef {
         gravity: Vec3::zeros(),
         bodies: vec![
-            body("a", 3.0, Vec3::zeros(), Mat3::from_diagonal(&Vec3::new(0.2, 0.3, 0.4))),
-            body("b", 2.0, Vec3::new(0.1, 0.0, 0.05), Mat3::from_diagonal(&Vec3::new(0.15, 0.1, 0.12))),
-            body("c", 1.0, Vec3::new(0.0, 0.0, 0.2), Mat3::from_diagonal(&Vec3::new(0.05, 0.06, 0.07))),
-            body("d", 0.5, Vec3::new(0.0, 0.1, 0.0), Mat3::from_diagonal(&Vec3::new(0.02, 0.03, 0.04))),
+            body(
+                "a",
+                3.0,
+                Vec3::zeros(),
+                Mat3::from_diagonal(&Vec3::new(0.2, 0.3, 0.4)),
+            ),
+            body(
+                "b",
+                2.0,
+                Vec3::new(0.1, 0.0, 0.05),
+                Mat3::from_diagonal(&Vec3::new(0.15, 0.1, 0.12)),
+            ),
+            body(
+                "c",
+                1.0,
+                Vec3::new(0.0, 0.0, 0.2),
+                Mat3::from_diagonal(&Vec3::new(0.05, 0.06, 0.07)),
+            ),
+            body(
+                "d",
+                0.5,
+                Vec3::new(0.0, 0.1, 0.0),
+                Mat3::from_diagonal(&Vec3::new(0.02, 0.03, 0.04)),
+            ),
         ],
         joints: vec![pri, sph, cyl],
-        loads: vec![BodyLoadDef { body: 0, torque: true, force: true }],
+        loads: vec![BodyLoadDef {
+            body: 0,
+            torque: true,
+            force: true,
+        }],
         free_bodies: vec![FreeBodyInitial {
             body: 0,
             position: Vec3::zeros(),

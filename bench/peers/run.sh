@@ -16,7 +16,9 @@ fi
 WORK="$ROOT/target/peers"
 mkdir -p "$WORK"
 # the harness writes its models/ and cache/ beside itself: run a copy
-rsync -a --exclude results --exclude '*.png' "$SHARED/peers/" "$WORK/harness/"
+rm -rf "$WORK/harness" && mkdir -p "$WORK/harness"
+(cd "$SHARED/peers" && tar --exclude=./results --exclude='*.png' -cf - .) | (cd "$WORK/harness" && tar -xf -)
+chmod -R u+w "$WORK/harness"
 cd "$WORK/harness"
 PY="$VENV/bin/python"
 ENGINE="$PY $ROOT/bench/peers/triad_engine.py --model {model} --h {h} --t-end {t_end} --dt-out {dt_out} --out {out} --method {method}"

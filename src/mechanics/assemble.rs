@@ -5,6 +5,8 @@
 //! tested row by row (tree joints first) by Gram–Schmidt with relative tolerance 1e-9; a row
 //! that depends on the kept ones is dropped from the Newton solve (it still counts in the
 //! constraint residual) and a note names the joint.
+// index loops over coupled fixed-size arrays read closer to the formulas than iterator chains
+#![allow(clippy::needless_range_loop)]
 
 use super::constraint::Nodes;
 use super::def::JointType;

@@ -18,6 +18,7 @@ pub mod def;
 mod error;
 pub mod joint;
 pub mod kinematics;
+mod kernels;
 pub mod loops;
 mod model;
 mod newton;

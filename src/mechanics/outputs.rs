@@ -1,4 +1,6 @@
 //! Output values at the current node time: per body, per joint and for the system.
+// index loops over coupled fixed-size arrays read closer to the formulas than iterator chains
+#![allow(clippy::needless_range_loop)]
 
 use crate::math::{Mat3, Vec3};
 

@@ -7,6 +7,13 @@
 //! `D_c` (diagonal block, `n_c × n_c`), `U_c` (rows of supernode `c`, columns `x_p`, `n_c × 6`)
 //! and `L_c` (body rows of `p`, columns of supernode `c`, `6 × n_c`). Eliminating leaves to
 //! root costs O(N) with fixed-size blocks (at most 12 × 12).
+//!
+//! Systems with loop-closing joints use one dense LU with partial pivoting over all unknowns
+//! (`6 N + active rows`, preallocated in the workspace): O(N³), meant for the small closed
+//! linkages (four-bars, parallel mechanisms) this tool targets; redundant loop rows are dropped
+//! at set-up so that the matrix stays regular.
+// index loops over coupled fixed-size arrays read closer to the formulas than iterator chains
+#![allow(clippy::needless_range_loop)]
 
 /// Largest supernode size: 6 body unknowns + 6 joint rows.
 pub const NMAX: usize = 12;
@@ -84,42 +91,6 @@ pub fn lu_solve(a: &[f64], n: usize, s: usize, piv: &[usize], b: &mut [f64]) {
     }
 }
 
-/// Solves `A X = B` for the `n × 6` block `B` (row-major, stride 6) in place.
-fn lu_solve6(a: &[f64], n: usize, s: usize, piv: &[usize], b: &mut [f64; NMAX * 6]) {
-    for k in 0..n {
-        let p = piv[k];
-        if p != k {
-            for c in 0..6 {
-                b.swap(k * 6 + c, p * 6 + c);
-            }
-        }
-    }
-    for i in 0..n {
-        for j in 0..i {
-            let f = a[i * s + j];
-            if f != 0.0 {
-                for c in 0..6 {
-                    b[i * 6 + c] -= f * b[j * 6 + c];
-                }
-            }
-        }
-    }
-    for i in (0..n).rev() {
-        for j in i + 1..n {
-            let f = a[i * s + j];
-            if f != 0.0 {
-                for c in 0..6 {
-                    b[i * 6 + c] -= f * b[j * 6 + c];
-                }
-            }
-        }
-        let inv = 1.0 / a[i * s + i];
-        for c in 0..6 {
-            b[i * 6 + c] *= inv;
-        }
-    }
-}
-
 /// One supernode's blocks and right-hand side (all preallocated, fixed size).
 #[derive(Clone, Debug)]
 pub struct Block {
@@ -133,8 +104,6 @@ pub struct Block {
     pub l: [f64; 6 * NMAX],
     /// Right-hand side, then the solution.
     pub r: [f64; NMAX],
-    /// Pivots of `D`.
-    pub piv: [usize; NMAX],
 }
 
 impl Block {
@@ -147,72 +116,150 @@ impl Block {
             u: [0.0; NMAX * 6],
             l: [0.0; 6 * NMAX],
             r: [0.0; NMAX],
-            piv: [0; NMAX],
         }
     }
 
-    /// Zeroes matrices and right-hand side.
+    /// Zeroes the used parts of the matrices and the right-hand side.
     pub fn clear(&mut self) {
-        self.d.fill(0.0);
-        self.u.fill(0.0);
-        self.l.fill(0.0);
+        let n = self.n;
+        for i in 0..n {
+            self.d[i * NMAX..i * NMAX + n].fill(0.0);
+        }
+        self.u[..n * 6].fill(0.0);
+        for i in 0..6 {
+            self.l[i * NMAX..i * NMAX + n].fill(0.0);
+        }
         self.r.fill(0.0);
     }
+}
+
+/// Width of the augmented rows `[D | U | r]`.
+const W: usize = NMAX + 7;
+
+/// Gaussian elimination with partial pivoting of the augmented `n × (n + k)` system held in
+/// `a` (row stride [`W`]); on return columns `n..n + k` hold `D⁻¹ [U | r]`. Returns false for a
+/// pivot below `1e-14` times the largest entry of `D`.
+fn eliminate(a: &mut [f64; NMAX * W], n: usize, k: usize) -> bool {
+    let ncol = n + k;
+    let mut amax = 0.0_f64;
+    for row in a.chunks_exact(W).take(n) {
+        for x in &row[..n] {
+            amax = amax.max(x.abs());
+        }
+    }
+    if !(amax.is_finite() && amax > 0.0) {
+        return false;
+    }
+    let tiny = 1e-14 * amax;
+    for c in 0..n {
+        // pivot search in column c
+        let mut p = c;
+        let mut best = a[c * W + c].abs();
+        for i in c + 1..n {
+            let v = a[i * W + c].abs();
+            if v > best {
+                best = v;
+                p = i;
+            }
+        }
+        if best <= tiny || !best.is_finite() {
+            return false;
+        }
+        if p != c {
+            let (lo, hi) = a.split_at_mut(p * W);
+            lo[c * W..c * W + ncol].swap_with_slice(&mut hi[..ncol]);
+        }
+        let (top, bottom) = a.split_at_mut((c + 1) * W);
+        let piv = &top[c * W..c * W + ncol];
+        let inv = 1.0 / piv[c];
+        for row in bottom.chunks_exact_mut(W).take(n - c - 1) {
+            let f = row[c] * inv;
+            if f != 0.0 {
+                for (x, y) in row[c + 1..ncol].iter_mut().zip(&piv[c + 1..ncol]) {
+                    *x -= f * y;
+                }
+            }
+        }
+    }
+    // back substitution on the k right-hand columns
+    for i in (0..n).rev() {
+        let (top, bottom) = a.split_at_mut((i + 1) * W);
+        let row = &mut top[i * W..i * W + ncol];
+        for (j, lower) in bottom.chunks_exact(W).take(n - i - 1).enumerate() {
+            let f = row[i + 1 + j];
+            if f != 0.0 {
+                for (x, y) in row[n..ncol].iter_mut().zip(&lower[n..ncol]) {
+                    *x -= f * y;
+                }
+            }
+        }
+        let inv = 1.0 / row[i];
+        for x in &mut row[n..ncol] {
+            *x *= inv;
+        }
+    }
+    true
 }
 
 /// Tree block elimination: `order` lists bodies parents first, `parent[b]` the tree parent.
 /// On return each `blocks[b].r` holds supernode `b`'s solution. Returns false if a diagonal
 /// block is singular.
 pub fn solve_tree(blocks: &mut [Block], order: &[usize], parent: &[Option<usize>]) -> bool {
-    // leaves to root: factor D_c, Schur update of the parent's body block
+    let mut a = [0.0; NMAX * W];
+    // leaves to root: D_c⁻¹ [U_c | r_c], Schur update of the parent's body block
     for &c in order.iter().rev() {
-        let (n, ok) = {
+        let has_parent = parent[c].is_some();
+        let k = if has_parent { 7 } else { 1 };
+        let (upd, rupd) = {
             let b = &mut blocks[c];
             let n = b.n;
-            (n, lu_factor(&mut b.d, n, NMAX, &mut b.piv, 1e-14))
-        };
-        if !ok {
-            return false;
-        }
-        let Some(p) = parent[c] else {
-            let b = &mut blocks[c];
-            let mut r = b.r;
-            lu_solve(&b.d, n, NMAX, &b.piv, &mut r[..n]);
-            b.r = r;
-            continue;
-        };
-        // y = D⁻¹ r, Y = D⁻¹ U (stored back into r and u)
-        let (l, upd, rupd) = {
-            let b = &mut blocks[c];
-            let mut r = b.r;
-            lu_solve(&b.d, n, NMAX, &b.piv, &mut r[..n]);
-            b.r = r;
-            let mut u = b.u;
-            lu_solve6(&b.d, n, NMAX, &b.piv, &mut u);
-            b.u = u;
+            for i in 0..n {
+                let row = &mut a[i * W..i * W + n + k];
+                row[..n].copy_from_slice(&b.d[i * NMAX..i * NMAX + n]);
+                if has_parent {
+                    row[n..n + 6].copy_from_slice(&b.u[i * 6..i * 6 + 6]);
+                    row[n + 6] = b.r[i];
+                } else {
+                    row[n] = b.r[i];
+                }
+            }
+            if !eliminate(&mut a, n, k) {
+                return false;
+            }
+            if !has_parent {
+                for i in 0..n {
+                    b.r[i] = a[i * W + n];
+                }
+                continue;
+            }
+            for i in 0..n {
+                b.u[i * 6..i * 6 + 6].copy_from_slice(&a[i * W + n..i * W + n + 6]);
+                b.r[i] = a[i * W + n + 6];
+            }
             // L Y (6 × 6) and L y (6)
             let mut upd = [0.0; 36];
             let mut rupd = [0.0; 6];
             for i in 0..6 {
-                for k in 0..n {
-                    let lik = b.l[i * NMAX + k];
+                for kk in 0..n {
+                    let lik = b.l[i * NMAX + kk];
                     if lik != 0.0 {
                         for j in 0..6 {
-                            upd[i * 6 + j] += lik * b.u[k * 6 + j];
+                            upd[i * 6 + j] += lik * b.u[kk * 6 + j];
                         }
-                        rupd[i] += lik * b.r[k];
+                        rupd[i] += lik * b.r[kk];
                     }
                 }
             }
-            (b.l, upd, rupd)
+            (upd, rupd)
         };
-        let _ = l;
-        let bp = &mut blocks[p];
-        for i in 0..6 {
-            for j in 0..6 {
-                bp.d[i * NMAX + j] -= upd[i * 6 + j];
+        if let Some(p) = parent[c] {
+            let bp = &mut blocks[p];
+            for i in 0..6 {
+                for j in 0..6 {
+                    bp.d[i * NMAX + j] -= upd[i * 6 + j];
+                }
+                bp.r[i] -= rupd[i];
             }
-            bp.r[i] -= rupd[i];
         }
     }
     // root to leaves: z_c = y_c − Y_c x_p (roots are already solved)

@@ -22,6 +22,10 @@ pub struct State {
     pub(crate) angles: Vec<f64>,
     /// Accumulated work of inputs minus damping dissipation, J.
     pub(crate) work: f64,
+    /// Predictor history: mean rates of the last stage, 6 per body.
+    pub(crate) hist: Vec<f64>,
+    /// Size of the last stage, s (0: none).
+    pub(crate) hprev: f64,
     pub(crate) inputs: Vec<f64>,
     pub(crate) damping: Vec<f64>,
     pub(crate) stiffness: Vec<f64>,
@@ -43,6 +47,8 @@ impl State {
             lam: vec![0.0; model.nrows],
             angles: model.angles0.clone(),
             work: 0.0,
+            hist: vec![0.0; 6 * model.body_count()],
+            hprev: 0.0,
             inputs: vec![0.0; model.inputs().len()],
             damping: def.joints.iter().map(|j| j.damping).collect(),
             stiffness: def.joints.iter().map(|j| j.stiffness).collect(),
@@ -105,7 +111,8 @@ impl State {
         self.stiffness[j]
     }
 
-    /// Sets the stiffness of joint `j` (the energy output follows the new value).
+    /// Sets the stiffness of joint `j` (outputs, including the spring energy, are recomputed at
+    /// the next step or restore).
     pub fn set_stiffness(&mut self, j: usize, k: f64) {
         self.stiffness[j] = k;
     }
@@ -130,7 +137,7 @@ impl State {
 
     /// Every number that determines the future of this state (time, q, v, multipliers used as
     /// the Newton start, inputs, tunable parameters, accumulated work, unwrapping memory), flat:
-    /// `[t, q.., v.., v_lo.., λ/2.., angles.., work, inputs.., damping.., stiffness..]`.
+    /// `[t, q.., v.., v_lo.., λ/2.., angles.., work, hist.., h_prev, inputs.., damping.., stiffness..]`.
     #[must_use]
     pub fn snapshot(&self) -> Vec<f64> {
         let mut out = Vec::with_capacity(self.snapshot_len());
@@ -141,6 +148,8 @@ impl State {
         out.extend_from_slice(&self.lam);
         out.extend_from_slice(&self.angles);
         out.push(self.work);
+        out.extend_from_slice(&self.hist);
+        out.push(self.hprev);
         out.extend_from_slice(&self.inputs);
         out.extend_from_slice(&self.damping);
         out.extend_from_slice(&self.stiffness);
@@ -148,7 +157,8 @@ impl State {
     }
 
     fn snapshot_len(&self) -> usize {
-        2 + self.q.len()
+        3 + self.q.len()
+            + self.hist.len()
             + 2 * self.v.len()
             + self.lam.len()
             + self.angles.len()
@@ -183,11 +193,15 @@ impl State {
         take(&mut self.angles);
         let mut w = [0.0];
         take(&mut w);
+        take(&mut self.hist);
+        let mut hp = [0.0];
+        take(&mut hp);
         take(&mut self.inputs);
         take(&mut self.damping);
         take(&mut self.stiffness);
         self.t = t[0];
         self.work = w[0];
+        self.hprev = hp[0];
         self.refresh_outputs(model);
         Ok(())
     }

@@ -1,10 +1,13 @@
 //! One energy–momentum step (order 2) or its triple-jump composition (order 4).
 //!
 //! A stage of size `h` solves the scaled EM equations (see `newton`) from the predictor
-//! `φ + h φ̇`, `dᵢ ← exp(h ω̂ₙ) dᵢ`, `μ = h² λₙ/2`, then sets `v_{n+1} = (2/h)(q_{n+1} − qₙ) − vₙ`.
+//! `φ + h v̄`, `dᵢ ← cay(h ω̄) dᵢ` (mean rates extrapolated from the nodal ones and the previous
+//! stage's), `μ = h² λₙ/2`, then sets `v_{n+1} = (2/h)(q_{n+1} − qₙ) − vₙ`.
 //! Order 4 is `Φ_{γ₁h} ∘ Φ_{γ₂h} ∘ Φ_{γ₁h}` with `γ₁ = 1/(2 − 2^{1/3})`, `γ₂ = 1 − 2γ₁`
 //! (theory.md §4.8); every stage is itself an EM step, so the conservation laws hold exactly.
 //! All work happens on workspace copies; the state is written only after every stage converged.
+// index loops over coupled fixed-size arrays read closer to the formulas than iterator chains
+#![allow(clippy::needless_range_loop)]
 
 use super::assemble::{read3, write3};
 use super::error::StepError;
@@ -54,6 +57,8 @@ pub fn step(model: &Model, state: &mut State, h: f64) -> Result<StepStats, StepE
     ws.lam.copy_from_slice(&state.lam);
     ws.ang.copy_from_slice(&state.angles);
     ws.work = state.work;
+    ws.hist.copy_from_slice(&state.hist);
+    ws.hprev = state.hprev;
     let held = Held {
         inputs: &state.inputs,
         damping: &state.damping,
@@ -76,6 +81,8 @@ pub fn step(model: &Model, state: &mut State, h: f64) -> Result<StepStats, StepE
     state.lam.copy_from_slice(&ws.lam);
     state.angles.copy_from_slice(&ws.ang);
     state.work = ws.work;
+    state.hist.copy_from_slice(&ws.hist);
+    state.hprev = ws.hprev;
     state.t += h;
     state.refresh_outputs(model);
     Ok(stats)
@@ -116,17 +123,31 @@ fn robust_stage(
 /// One EM stage of size `h` (may be negative inside the composition) on the workspace.
 fn stage(model: &Model, ws: &mut Work, held: &Held, h: f64) -> Result<StepStats, StepError> {
     let nb = model.bodies.len();
-    // predictor
+    // predictor: mean velocities over the stage extrapolated linearly in time from the nodal
+    // ones and the previous stage's means (first stage: the nodal ones), Cayley rotation
+    let ratio = if ws.hprev != 0.0 { h / ws.hprev } else { 0.0 };
     for b in 0..nb {
         let o = 12 * b;
-        let inc = read3(&ws.vn, o) * h;
+        let vphi = read3(&ws.vn, o);
+        let vbar = vphi + (vphi - read3(&ws.hist, 6 * b)) * ratio;
+        let inc = vbar * h;
         write3(&mut ws.dq, o, &inc);
         write3(&mut ws.q, o, &(read3(&ws.qn, o) + inc));
         let mut w = crate::math::Vec3::zeros();
         for i in 0..3 {
             w += read3(&ws.qn, o + 3 + 3 * i).cross(&read3(&ws.vn, o + 3 + 3 * i));
         }
-        let em1 = expm1_so3(&(w * (0.5 * h)));
+        w *= 0.5;
+        let wbar = w + (w - read3(&ws.hist, 6 * b + 3)) * ratio;
+        // Cayley vector θ = h ω̄ ↔ rotation angle 2 atan(|θ|/2)
+        let th = wbar * h;
+        let n = th.norm();
+        let rv = if n > 0.0 {
+            th * (2.0 * (0.5 * n).atan() / n)
+        } else {
+            th
+        };
+        let em1 = expm1_so3(&rv);
         for i in 0..3 {
             let dn = read3(&ws.qn, o + 3 + 3 * i);
             let inc = em1 * dn;
@@ -141,6 +162,7 @@ fn stage(model: &Model, ws: &mut Work, held: &Held, h: f64) -> Result<StepStats,
     let maxit = model.settings().max_iterations;
     let mut work = 0.0;
     let mut it = 0;
+    let mut last_res: f64;
     loop {
         it += 1;
         let n = evaluate(model, ws, held, h, true, &mut work);
@@ -154,6 +176,7 @@ fn stage(model: &Model, ws: &mut Work, held: &Held, h: f64) -> Result<StepStats,
         if !upd.is_finite() {
             return Err(StepError::NonFinite("state"));
         }
+        last_res = n.res.max(upd);
         if upd <= tol && n.res <= tol {
             break;
         }
@@ -165,8 +188,8 @@ fn stage(model: &Model, ws: &mut Work, held: &Held, h: f64) -> Result<StepStats,
         }
     }
     // work and unwrapped angles at the converged iterate
-    let n = evaluate(model, ws, held, h, false, &mut work);
-    if !n.res.is_finite() {
+    let _ = evaluate(model, ws, held, h, false, &mut work);
+    if !work.is_finite() || ws.acc.iter().any(|x| !x.is_finite()) {
         return Err(StepError::NonFinite("state"));
     }
     // v_{n+1} = vₙ + 2a/h in double-double (two-sum), a from the final evaluation
@@ -183,9 +206,18 @@ fn stage(model: &Model, ws: &mut Work, held: &Held, h: f64) -> Result<StepStats,
     }
     ws.ang.copy_from_slice(&ws.ang1);
     ws.work += work;
+    // stage means for the next predictor: Δφ/h and θ/h
+    for b in 0..nb {
+        let o = 12 * b;
+        for k in 0..3 {
+            ws.hist[6 * b + k] = ws.dq[o + k] / h;
+            ws.hist[6 * b + 3 + k] = ws.theta[3 * b + k] / h;
+        }
+    }
+    ws.hprev = h;
     Ok(StepStats {
         iterations: it,
-        residual: n.res,
+        residual: last_res,
     })
 }
 

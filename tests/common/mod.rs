@@ -267,7 +267,14 @@ pub fn rel(a: f64, b: f64, floor: f64) -> f64 {
 #[must_use]
 pub fn four_bar(theta1: f64, crank_rate: f64) -> ModelDef {
     let (g, a, b, c) = (2.0, 0.6, 2.2, 1.5);
-    let link = |name: &str, len: f64| body(name, len, Vec3::new(0.5 * len, 0.0, 0.0), box_inertia(len, len, 0.05, 0.05));
+    let link = |name: &str, len: f64| {
+        body(
+            name,
+            len,
+            Vec3::new(0.5 * len, 0.0, 0.0),
+            box_inertia(len, len, 0.05, 0.05),
+        )
+    };
     let pa = Vec3::new(a * theta1.cos(), a * theta1.sin(), 0.0);
     let o2 = Vec3::new(g, 0.0, 0.0);
     let dist = (o2 - pa).norm();
@@ -281,9 +288,23 @@ pub fn four_bar(theta1: f64, crank_rate: f64) -> ModelDef {
     close.child_frame.translation = Vec3::new(c, 0.0, 0.0);
     let mut j0 = joint("j0", JointType::Revolute, None, 0, Vec3::zeros(), Vec3::z());
     set_q(&mut j0, &[theta1], &[crank_rate]);
-    let mut j1 = joint("j1", JointType::Revolute, Some(0), 1, Vec3::new(a, 0.0, 0.0), Vec3::z());
+    let mut j1 = joint(
+        "j1",
+        JointType::Revolute,
+        Some(0),
+        1,
+        Vec3::new(a, 0.0, 0.0),
+        Vec3::z(),
+    );
     set_q(&mut j1, &[th2 - theta1], &[0.0]);
-    let mut j2 = joint("j2", JointType::Revolute, Some(1), 2, Vec3::new(b, 0.0, 0.0), Vec3::z());
+    let mut j2 = joint(
+        "j2",
+        JointType::Revolute,
+        Some(1),
+        2,
+        Vec3::new(b, 0.0, 0.0),
+        Vec3::z(),
+    );
     set_q(&mut j2, &[th3 - th2], &[0.0]);
     ModelDef {
         gravity: Vec3::new(0.0, -9.81, 0.0),
