@@ -86,10 +86,17 @@ fn display_units(unit: &str) -> &'static [(&'static str, f64)] {
     }
 }
 
-/// A real as written to the XML: shortest round-trip form.
+/// A real as written to the XML: the shorter of Rust's two round-trip forms (`0`, `0.01`,
+/// `1e-10`, `57.29577951308232`), so integral values carry no `.0`.
 #[must_use]
 pub fn real(x: f64) -> String {
-    format!("{x:?}")
+    let plain = format!("{x}");
+    let sci = format!("{x:?}");
+    if sci.len() < plain.len() {
+        sci
+    } else {
+        plain
+    }
 }
 
 fn causality(c: Causality) -> &'static str {

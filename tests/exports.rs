@@ -56,3 +56,24 @@ fn the_shared_object_needs_only_the_c_runtime() {
         bad.join("\n")
     );
 }
+
+#[cfg(target_os = "linux")]
+#[test]
+fn exactly_the_34_functions_are_exported() {
+    // nothing else is visible, so two FMUs in one process cannot clash on symbols
+    let path = fmu_support::cdylib();
+    let out = std::process::Command::new("nm")
+        .args(["-D", "--defined-only"])
+        .arg(&path)
+        .output()
+        .expect("nm runs");
+    let text = String::from_utf8_lossy(&out.stdout);
+    let mut names: Vec<&str> = text
+        .lines()
+        .filter_map(|l| l.split_whitespace().nth(2))
+        .collect();
+    names.sort_unstable();
+    let mut want = FMI2_CS_FUNCTIONS.to_vec();
+    want.sort_unstable();
+    assert_eq!(names, want);
+}

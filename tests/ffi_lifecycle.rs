@@ -287,6 +287,10 @@ fn parameters_before_initialisation_and_tunables_between_steps() {
     );
     assert_eq!(unsafe { fmi2EnterInitializationMode(f.c) }, fmi2OK);
     assert_eq!(f.get_real(&[ms]).1, vec![0.0005]);
+    // outputs (the InitialUnknowns) are available in Initialization Mode
+    let (s, y) = f.get_real(&m.vrs(Causality::Output));
+    assert_eq!(s, fmi2OK);
+    assert!(y.iter().all(|x| x.is_finite()));
     assert_eq!(
         f.set_real(&[ms], &[0.002]),
         fmi2OK,
@@ -307,4 +311,36 @@ fn parameters_before_initialisation_and_tunables_between_steps() {
         fmi2OK
     );
     assert_eq!(v[0], 2);
+}
+
+#[test]
+fn a_failure_escalates_to_error_mode_and_reset_recovers() {
+    let m = TestModel::pendulum();
+    let f = Fmu::new(&m);
+    // a physically impossible inertia (violates the triangle inequality) is accepted as a value
+    // but the model cannot be built: fmi2EnterInitializationMode fails, the instance is in Error
+    let ixx = m.vr("body.link1.inertia[1,1]");
+    assert_eq!(f.set_real(&[ixx], &[100.0]), fmi2OK);
+    assert_eq!(unsafe { fmi2EnterInitializationMode(f.c) }, fmi2Error);
+    assert!(
+        f.last_message().contains("cannot be built"),
+        "{}",
+        f.last_message()
+    );
+    assert_eq!(unsafe { fmi2ExitInitializationMode(f.c) }, fmi2Error);
+    assert!(
+        f.last_message().contains("Error mode"),
+        "{}",
+        f.last_message()
+    );
+    assert_eq!(
+        f.set_real(&[ixx], &[0.0834]),
+        fmi2Error,
+        "no sets in Error mode"
+    );
+    // reset: back to the spec's values, usable again
+    assert_eq!(unsafe { fmi2Reset(f.c) }, fmi2OK);
+    assert_eq!(unsafe { fmi2EnterInitializationMode(f.c) }, fmi2OK);
+    assert_eq!(unsafe { fmi2ExitInitializationMode(f.c) }, fmi2OK);
+    assert_eq!(f.step(0.0, 0.01), fmi2OK);
 }

@@ -115,6 +115,8 @@ fn test_model_description_structure() {
     let xml = generate(&spec);
     for needle in [
         "fmiVersion=\"2.0\"",
+        "causality=\"input\" variability=\"continuous\">",
+        "<Real unit=\"N.m\" start=\"0\"/>",
         "variableNamingConvention=\"structured\"",
         concat!("generationTool=\"triad ", env!("CARGO_PKG_VERSION"), "\""),
         "canHandleVariableCommunicationStepSize=\"true\"",
@@ -123,7 +125,7 @@ fn test_model_description_structure() {
         "canNotUseMemoryManagementFunctions=\"true\"",
         "<Category name=\"logStatusDiscard\"",
         "<DisplayUnit name=\"deg\" factor=\"57.29577951308232\"/>",
-        "<DefaultExperiment startTime=\"0.0\" stopTime=\"1.0\" tolerance=\"1e-10\" stepSize=\"0.01\"/>",
+        "<DefaultExperiment startTime=\"0\" stopTime=\"1\" tolerance=\"1e-10\" stepSize=\"0.01\"/>",
     ] {
         assert!(xml.contains(needle), "{needle} missing in\n{xml}");
     }

@@ -115,7 +115,7 @@ ffi_fn! {
 
 ffi_fn! {
     /// `fmi2DeSerializeFMUstate` (FMI 2.0.4 §2.1.8): parses and checks the bytes (magic, version,
-    /// GUID of this model) into a new FMU state.
+    /// GUID of this model) into a newly allocated FMU state (`*FMUstate` is output only).
     fn fmi2DeSerializeFMUstate(c: fmi2Component, serializedState: *const fmi2Byte, size: usize, FMUstate: *mut fmi2FMUstate) -> fmi2Status {
         // SAFETY: FMI contract on c, the buffer of `size` bytes and FMUstate.
         unsafe {
@@ -127,7 +127,7 @@ ffi_fn! {
                 if snap.guid() != i.guid() {
                     return Err(FmuError::rejected(format!("serialized FMU state belongs to model {} (this is {})", snap.guid(), i.guid())));
                 }
-                store(FMUstate, snap);
+                *FMUstate = Box::into_raw(Box::new(snap)).cast();
                 Ok(Status::Ok)
             })
         }

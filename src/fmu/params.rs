@@ -6,6 +6,7 @@
 use super::contract::{read_param, read_state, write_param};
 use super::instance::{Instance, Mode, Op};
 use super::status::{FmuError, Status};
+use crate::mechanics::ModelDef;
 use crate::variables::{Accessor, Causality, Initial, VarType, Variability, Variable};
 
 /// The FMI base type a get/set call is for.
@@ -179,9 +180,9 @@ impl Instance {
     ) -> Result<Status, FmuError> {
         self.check(Op::Set, function)?;
         // check everything first
-        let mut def = self.def.clone();
+        // the definition is copied only when a parameter is set (not for the per-step inputs)
+        let mut def: Option<ModelDef> = None;
         let mut settings = self.settings;
-        let mut params_changed = false;
         let mut updates = Vec::with_capacity(vrs.len());
         for (&vr, &value) in vrs.iter().zip(values) {
             let v = self.lookup(vr, base)?;
@@ -198,27 +199,28 @@ impl Instance {
                 )));
             }
             if v.causality == Causality::Parameter {
-                write_param(v.accessor, &mut def, &mut settings, value)
+                let d = def.get_or_insert_with(|| self.def.clone());
+                write_param(v.accessor, d, &mut settings, value)
                     .map_err(|e| FmuError::rejected(format!("'{}' = {value}: {e}", v.name)))?;
-                params_changed = true;
             }
             updates.push((v.accessor, value));
         }
         // a parameter change during Initialization Mode rebuilds the simulation (inputs kept)
-        let rebuilt = if params_changed && self.mode == Mode::InitializationMode {
-            let mut inputs = self.inputs.clone();
-            if let Some(sim) = &self.sim {
-                inputs = sim.state().inputs().to_vec();
+        let rebuilt = match (&def, self.mode) {
+            (Some(def), Mode::InitializationMode) => {
+                let mut inputs = self.inputs.clone();
+                if let Some(sim) = &self.sim {
+                    inputs = sim.state().inputs().to_vec();
+                }
+                Some(
+                    self.build(def, &settings, &inputs)
+                        .map_err(FmuError::Rejected)?,
+                )
             }
-            Some(
-                self.build(&def, &settings, &inputs)
-                    .map_err(FmuError::Rejected)?,
-            )
-        } else {
-            None
+            _ => None,
         };
         // apply
-        if params_changed {
+        if let Some(def) = def {
             self.def = def;
             self.settings = settings;
         }

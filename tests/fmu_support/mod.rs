@@ -359,11 +359,3 @@ pub fn cdylib() -> PathBuf {
     }
     panic!("{file} not found next to {}", exe.display());
 }
-
-/// True while the mechanics core is the set-up placeholder (steps only advance time, outputs
-/// empty); physics-dependent assertions are skipped then.
-pub fn mechanics_is_placeholder(m: &TestModel) -> bool {
-    let (def, settings) = m.spec.lower().unwrap();
-    let sim = triad::sim::Simulation::new(&def, settings, 0.0).unwrap();
-    sim.state().outputs().joints.is_empty()
-}
