@@ -61,7 +61,7 @@ pub fn find_cdylib() -> Result<PathBuf, String> {
         let p = d.join(file);
         // the newest candidate wins: cargo only copies the library up on `cargo build --lib`
         if let Ok(modified) = p.metadata().and_then(|m| m.modified()) {
-            if found.as_ref().map_or(true, |(t, _)| modified > *t) {
+            if found.as_ref().is_none_or(|(t, _)| modified > *t) {
                 found = Some((modified, p.clone()));
             }
         }

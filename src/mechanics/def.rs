@@ -25,17 +25,17 @@ pub struct BodyDef {
 /// The lower kinematic pairs.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
 pub enum JointType {
-    /// 1 rotation about `axis`; q = [angle].
+    /// 1 rotation about `axis`; q = `[angle]`.
     Revolute,
-    /// 1 translation along `axis`; q = [slide].
+    /// 1 translation along `axis`; q = `[slide]`.
     Prismatic,
-    /// Translation along and rotation about `axis`; q = [slide, angle].
+    /// Translation along and rotation about `axis`; q = `[slide, angle]`.
     Cylindrical,
-    /// Rotations about `axis` (fixed in the parent) then `axis2` (fixed in the child); q = [α, β].
+    /// Rotations about `axis` (fixed in the parent) then `axis2` (fixed in the child); q = `[α, β]`.
     Universal,
     /// 3 rotations; coordinates are a quaternion (w, x, y, z) and a relative angular velocity.
     Spherical,
-    /// Motion in the plane normal to `axis`; q = [x, y, angle] in the joint frame.
+    /// Motion in the plane normal to `axis`; q = `[x, y, angle]` in the joint frame.
     Planar,
     /// No relative motion.
     Fixed,

@@ -284,7 +284,7 @@ pub(super) fn check(spec: &Spec, report: &mut Report, body_index: &HashMap<&str,
                     let lowest = path.iter().all(|&j| {
                         body_index
                             .get(spec.joint[j].child.as_str())
-                            .map_or(true, |&c| c >= start)
+                            .is_none_or(|&c| c >= start)
                     });
                     if lowest {
                         let names: Vec<&str> =
