@@ -57,11 +57,7 @@ impl ProjWork {
         let blocks = (0..nb)
             .map(|b| Block::new(6 + model.tree_joint[b].map_or(0, |j| model.joints[j].rows.len())))
             .collect();
-        let nd = if model.dense {
-            6 * nb + model.nrows
-        } else {
-            0
-        };
+        let nd = if model.dense { 6 * nb + model.nrows } else { 0 };
         Self {
             blocks,
             dense: vec![0.0; nd * nd],
