@@ -23,6 +23,7 @@ pub mod loops;
 mod model;
 mod newton;
 mod outputs;
+mod projection;
 mod solver;
 mod state;
 mod step;

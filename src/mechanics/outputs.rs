@@ -72,10 +72,18 @@ impl Outputs {
 }
 
 /// Recomputes every output from the nodal state (theory.md §4.7). Allocates nothing.
+///
+/// `v` are the nodal velocities `vₙ` of the scheme (12 per body, world frame): the energy
+/// `½ vₙᵀ M vₙ + V` (the conserved discrete energy), `p` and `L` come from them. `vp` are their
+/// M-orthogonal projection onto the admissible velocities at `q` (`projection.rs`, same layout):
+/// the body velocities `v`, `w` and the joint rates come from `vp`, so that they satisfy the
+/// velocity constraints to round-off.
+#[allow(clippy::too_many_arguments)]
 pub(crate) fn update(
     model: &Model,
     q: &[f64],
     v: &[f64],
+    vp: &[f64],
     angles: &[f64],
     stiffness: &[f64],
     work: f64,
@@ -89,12 +97,13 @@ pub(crate) fn update(
     for (b, br) in model.bodies.iter().enumerate() {
         let qb = body_nodes(q, b);
         let vb = body_nodes(v, b);
+        let wb = body_nodes(vp, b);
         let rot = Mat3::from_columns(&[qb[1], qb[2], qb[3]]);
         let o = &mut out.bodies[b];
         o.rot = rot;
         o.r = qb[0] - rot * br.com;
-        o.v = vb[0] - (vb[1] * br.com.x + vb[2] * br.com.y + vb[3] * br.com.z);
-        o.w = (qb[1].cross(&vb[1]) + qb[2].cross(&vb[2]) + qb[3].cross(&vb[3])) * 0.5;
+        o.v = wb[0] - (wb[1] * br.com.x + wb[2] * br.com.y + wb[3] * br.com.z);
+        o.w = (qb[1].cross(&wb[1]) + qb[2].cross(&wb[2]) + qb[3].cross(&wb[3])) * 0.5;
         // kinetic + gravity energy, momenta (director momenta pᵢ = Σⱼ Eᵢⱼ ḋⱼ)
         let pphi = vb[0] * br.mass;
         energy += 0.5 * pphi.dot(&vb[0]) - br.mass * g.dot(&qb[0]);
@@ -135,8 +144,8 @@ pub(crate) fn update(
                 }
             }
         }
-        let va = jt.parent.map_or(zero, |a| body_nodes(v, a));
-        let vb = body_nodes(v, jt.child);
+        let va = jt.parent.map_or(zero, |a| body_nodes(vp, a));
+        let vb = body_nodes(vp, jt.child);
         let jo = &mut out.joints[j];
         super::assemble::joint_outputs(
             model,

@@ -4,6 +4,7 @@
 use super::model::Model;
 use super::newton::Work;
 use super::outputs::Outputs;
+use super::projection::{project_velocities, ProjWork};
 
 /// State of one simulation run. `Clone` is a complete snapshot.
 #[derive(Clone, Debug)]
@@ -32,6 +33,8 @@ pub struct State {
     pub(crate) outputs: Outputs,
     /// Newton workspace (not part of the snapshot).
     pub(crate) ws: Work,
+    /// Output-velocity projection workspace (not part of the snapshot).
+    pub(crate) pw: ProjWork,
 }
 
 impl State {
@@ -54,17 +57,24 @@ impl State {
             stiffness: def.joints.iter().map(|j| j.stiffness).collect(),
             outputs: Outputs::for_model(model),
             ws: Work::new(model),
+            pw: ProjWork::new(model),
         };
         s.refresh_outputs(model);
         s
     }
 
-    /// Recomputes the outputs from the current state.
+    /// Recomputes the outputs from the current state: first the M-orthogonal projection of the
+    /// nodal velocities onto the admissible ones (one linear solve, `projection.rs`), then every
+    /// output. Allocates nothing.
     pub(crate) fn refresh_outputs(&mut self, model: &Model) {
+        // a singular projection (impossible for a regular model) falls back to the nodal
+        // velocities inside `project_velocities`
+        let _ = project_velocities(model, &self.q, &self.v, &mut self.pw);
         super::outputs::update(
             model,
             &self.q,
             &self.v,
+            &self.pw.vp,
             &self.angles,
             &self.stiffness,
             self.work,
