@@ -93,13 +93,19 @@ impl Simulation {
                 last_good_time: t0,
             });
         }
-        self.saved.clone_from(&self.state);
         let n = self.substeps(h);
+        // `step` leaves the state untouched when it fails, so only a communication step of
+        // several sub-steps needs its own roll-back copy
+        if n > 1 {
+            self.saved.clone_from(&self.state);
+        }
         let dt = h / n as f64;
         let t_end = t0 + h;
-        for _ in 0..n {
+        for k in 0..n {
             if let Err(error) = step(&self.model, &mut self.state, dt) {
-                self.state.clone_from(&self.saved);
+                if k > 0 {
+                    self.state.clone_from(&self.saved);
+                }
                 return Err(AdvanceError {
                     error,
                     last_good_time: t0,
