@@ -1,0 +1,57 @@
+//! The cost of the FMI boundary: one communication step of the shipped double pendulum
+//! (h = max_step = 1e-3, one EM sub-step) through the exported `fmi2DoStep`, called in process
+//! as a C host would, against the same step through `Simulation::advance` (what `triad
+//! simulate` runs) and the bare `mechanics::step`.
+//! Run: `cargo bench --bench fmi_boundary -- --warm-up-time 1 --measurement-time 3`.
+use criterion::{criterion_group, criterion_main, Criterion};
+use triad::mechanics::step;
+use triad::sim::Simulation;
+use triad::spec::{bundled, Format, Spec};
+
+#[path = "../tests/fmu_support/mod.rs"]
+#[allow(clippy::all)]
+mod fmu_support;
+
+const H: f64 = 1e-3;
+
+fn spec_text() -> &'static str {
+    bundled()
+        .iter()
+        .find(|(name, _)| *name == "double_pendulum")
+        .map(|(_, text)| *text)
+        .expect("double_pendulum is shipped")
+}
+
+fn bench(c: &mut Criterion) {
+    let spec = Spec::from_str(spec_text(), Format::Toml, "spec.toml").expect("spec");
+    let (def, settings) = spec.lower().expect("lower");
+    let mut g = c.benchmark_group("double_pendulum_h1e-3");
+
+    // bare step
+    let mut sim = Simulation::new(&def, settings, 0.0).expect("sim");
+    let model = sim.model().clone();
+    let mut state = sim.state().clone();
+    g.bench_function("step", |b| {
+        b.iter(|| step(&model, &mut state, H).expect("step"))
+    });
+
+    // the simulate path
+    g.bench_function("simulation_advance", |b| {
+        b.iter(|| sim.advance(H).expect("advance"))
+    });
+
+    // the FMI path, called through the exported C functions
+    let m = fmu_support::TestModel::new(spec_text());
+    let fmu = fmu_support::Fmu::initialised(&m);
+    let mut t = 0.0;
+    g.bench_function("fmi2DoStep", |b| {
+        b.iter(|| {
+            assert_eq!(fmu.step(t, H), 0);
+            t += H;
+        })
+    });
+    g.finish();
+}
+
+criterion_group!(benches, bench);
+criterion_main!(benches);
