@@ -13,12 +13,14 @@
 
 mod assemble;
 pub mod body;
+mod body_terms;
 pub mod constraint;
 pub mod def;
 mod error;
+mod increment;
 pub mod joint;
-pub mod kinematics;
 mod kernels;
+pub mod kinematics;
 pub mod loops;
 mod model;
 mod newton;
@@ -26,6 +28,7 @@ mod outputs;
 mod solver;
 mod state;
 mod step;
+mod work;
 
 pub use def::{
     BodyDef, BodyIndex, BodyLoadDef, Frame, FreeBodyInitial, JointDef, JointInitial, JointType,
