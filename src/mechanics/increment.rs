@@ -22,8 +22,10 @@ pub(crate) fn solve(model: &Model, ws: &mut Work) -> bool {
     }
 }
 
-/// Applies the Newton update; returns the scaled update norm.
-pub(crate) fn update(model: &Model, ws: &mut Work) -> f64 {
+/// Applies the Newton update; returns the scaled update norm of the body unknowns and that of
+/// the multipliers (`|δμ|` times the largest residual scale of the child body, force or moment
+/// row with a lever of `max(1, lc)`, i.e. the size of its effect on the scaled residual).
+pub(crate) fn update(model: &Model, ws: &mut Work) -> (f64, f64) {
     let nb = model.bodies.len();
     let mut upd = 0.0_f64;
     for b in 0..nb {
@@ -46,7 +48,12 @@ pub(crate) fn update(model: &Model, ws: &mut Work) -> f64 {
             write3(&mut ws.q, o, &(read3(&ws.qn, o) + inc));
         }
     }
+    let mut dmu = 0.0_f64;
     for jt in &model.joints {
+        let br = &model.bodies[jt.child];
+        let fs = 1.0 / (br.mass * model.lc);
+        let ms = model.lc.max(1.0) / (br.e.trace().abs() + 0.5 * br.e.norm());
+        let scale = fs.max(ms);
         for k in 0..jt.rows.len() {
             let dm = if model.dense {
                 ws.drhs[6 * nb + jt.row0 + k]
@@ -54,7 +61,8 @@ pub(crate) fn update(model: &Model, ws: &mut Work) -> f64 {
                 ws.blocks[jt.child].r[6 + k]
             };
             ws.mu[jt.row0 + k] += dm;
+            dmu = dmu.max(dm.abs() * scale);
         }
     }
-    upd
+    (upd, dmu)
 }
