@@ -141,10 +141,13 @@ const W: usize = NMAX + 7;
 /// pivot below `1e-14` times the largest entry of `D`. Sizes are compile-time constants so that
 /// the loops unroll and vectorise (one instance per supernode size, see [`eliminate_block`]).
 fn eliminate<const N: usize, const K: usize>(a: &mut [f64; NMAX * W]) -> bool {
+    // largest |entry| (NaN entries are skipped, as by `f64::max`; a comparison select
+    // vectorises where `f64::max` does not)
     let mut amax = 0.0_f64;
     for i in 0..N {
         for j in 0..N {
-            amax = amax.max(a[i * W + j].abs());
+            let v = a[i * W + j].abs();
+            amax = if v > amax { v } else { amax };
         }
     }
     if !(amax.is_finite() && amax > 0.0) {
