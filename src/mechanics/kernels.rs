@@ -48,28 +48,32 @@ pub(crate) fn rotation_increment(n: &Nodes, q: &Nodes) -> Vec3 {
 /// The 6 × 6 block `P̄_aᵀ (C ⊗ I) Q_b` (row body `a` with midpoint directors `dbar`, column
 /// body `b` with iterate directors `d`), added to `out` (row-major).
 pub(crate) fn node_block(c: &[f64; 16], dbar: &[Vec3; 3], d: &[Vec3; 3], out: &mut [f64; 36]) {
-    let hd: [Mat3; 3] = std::array::from_fn(|j| skew(&d[j]));
-    let hb: [Mat3; 3] = std::array::from_fn(|i| skew(&dbar[i]));
-    let mut pt = Mat3::zeros();
-    let mut mp = Mat3::zeros();
-    let mut mt = Mat3::zeros();
-    for j in 0..3 {
-        pt -= hd[j] * c[j + 1];
-    }
+    // with hat(a) hat(b) = b aᵀ − (a·b) I every 3 × 3 block is a few outer products:
+    // pt = −Σⱼ c₀ⱼ hat(dⱼ) = −hat(p),  mp = Σᵢ cᵢ₀ hat(d̄ᵢ) = hat(s),
+    // mt = −Σᵢ hat(d̄ᵢ) hat(wᵢ) = Σᵢ (d̄ᵢ·wᵢ) I − wᵢ d̄ᵢᵀ,  wᵢ = Σⱼ cᵢⱼ dⱼ
+    let p = d[0] * c[1] + d[1] * c[2] + d[2] * c[3];
+    let sv = dbar[0] * c[4] + dbar[1] * c[8] + dbar[2] * c[12];
+    let mut mt = [[0.0; 3]; 3];
+    let mut tr = 0.0;
     for i in 0..3 {
-        mp += hb[i] * c[4 * (i + 1)];
-        let mut row = Mat3::zeros();
-        for j in 0..3 {
-            row += hd[j] * c[4 * (i + 1) + j + 1];
+        let o = 4 * (i + 1);
+        let w = d[0] * c[o + 1] + d[1] * c[o + 2] + d[2] * c[o + 3];
+        tr += dbar[i].dot(&w);
+        for r in 0..3 {
+            for s in 0..3 {
+                mt[r][s] -= w[r] * dbar[i][s];
+            }
         }
-        mt -= hb[i] * row;
     }
+    let pt = skew(&p);
+    let mp = skew(&sv);
     for r in 0..3 {
         out[r * 6 + r] += c[0];
+        out[(r + 3) * 6 + 3 + r] += tr;
         for s in 0..3 {
-            out[r * 6 + 3 + s] += pt[(r, s)];
+            out[r * 6 + 3 + s] -= pt[(r, s)];
             out[(r + 3) * 6 + s] += mp[(r, s)];
-            out[(r + 3) * 6 + 3 + s] += mt[(r, s)];
+            out[(r + 3) * 6 + 3 + s] += mt[r][s];
         }
     }
 }

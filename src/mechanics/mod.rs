@@ -13,9 +13,11 @@
 
 mod assemble;
 pub mod body;
+mod body_terms;
 pub mod constraint;
 pub mod def;
 mod error;
+mod increment;
 pub mod joint;
 mod kernels;
 pub mod kinematics;
@@ -27,6 +29,7 @@ mod projection;
 mod solver;
 mod state;
 mod step;
+mod work;
 
 pub use def::{
     BodyDef, BodyIndex, BodyLoadDef, Frame, FreeBodyInitial, JointDef, JointInitial, JointType,

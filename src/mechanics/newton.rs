@@ -26,121 +26,16 @@
 #![allow(clippy::needless_range_loop)]
 
 use super::assemble::{read3, write3};
+use super::body_terms::project_bodies;
 use super::constraint::{DotRow, Nodes};
+pub(crate) use super::increment::{solve, update};
 pub(crate) use super::kernels::{body_nodes, expm1_so3, rotation_increment};
 use super::kernels::{
     linvec_jac, nn_terms, node_block, outer, project, push_torque, row_q, torque_jac, Sink,
 };
 use super::model::{DofRt, Model};
-use super::solver::{lu_factor, lu_solve, solve_tree, Block};
-use crate::math::{skew, Mat3, Vec3};
-
-/// Preallocated Newton workspace (all sized at `State::new`).
-#[derive(Clone, Debug)]
-pub(crate) struct Work {
-    /// Stage start: coordinates, velocities (12 per body).
-    pub qn: Vec<f64>,
-    /// Stage start velocities (high part).
-    pub vn: Vec<f64>,
-    /// Stage start velocities, low part: `vn + vlo` carries the velocity in double-double so
-    /// that the recursion `v_{n+1} = v_n + 2a/h` accumulates no rounding (energy drift).
-    pub vlo: Vec<f64>,
-    /// `a = (q − qₙ) − h vₙ` of the last evaluation (12 per body).
-    pub acc: Vec<f64>,
-    /// Multiplier memory `λ/2` per active row (warm start `μ = h² λ/2`).
-    pub lam: Vec<f64>,
-    /// Unwrapped turn angles at the stage start, rad.
-    pub ang: Vec<f64>,
-    /// Accumulated work at the stage start, J.
-    pub work: f64,
-    /// Mean rates of the last stage `(Δφ/h, θ/h)`, 6 per body (predictor history).
-    pub hist: Vec<f64>,
-    /// Size of the last stage, s (0: no history).
-    pub hprev: f64,
-    /// Newton iterate.
-    pub q: Vec<f64>,
-    /// Increment `q − qₙ`, kept separately so that velocities do not suffer the cancellation
-    /// of large positions.
-    pub dq: Vec<f64>,
-    /// Midpoint `½(qₙ + q)`.
-    pub qbar: Vec<f64>,
-    /// Node residual `R̃` (12 per body).
-    pub rn: Vec<f64>,
-    /// Scaled multipliers.
-    pub mu: Vec<f64>,
-    /// Unwrapped turn angles at the iterate.
-    pub ang1: Vec<f64>,
-    /// Discrete rotation increments `θ_b = ½ Σ d̄ⁱ × (dᵢ − dᵢₙ)` (3 per body).
-    pub theta: Vec<f64>,
-    /// Scaled joint torques on the projected moment rows (3 per body).
-    pub mom: Vec<f64>,
-    /// Per-body 4 × 4 node coupling `C` (mass + ½ Σ μ S on the diagonal).
-    pub cbody: Vec<[f64; 16]>,
-    /// Per-body extra 6 × 6 diagonal Jacobian terms.
-    pub xbody: Vec<[f64; 36]>,
-    /// Tree blocks (one per body).
-    pub blocks: Vec<Block>,
-    /// Dense matrix (loop systems), row-major `n × n`.
-    pub dense: Vec<f64>,
-    /// Dense pivots.
-    pub dpiv: Vec<usize>,
-    /// Dense right-hand side / solution.
-    pub drhs: Vec<f64>,
-}
-
-impl Work {
-    /// Workspace for `model`.
-    pub fn new(model: &Model) -> Self {
-        let nb = model.bodies.len();
-        let nr = model.nrows;
-        let blocks = (0..nb)
-            .map(|b| Block::new(6 + model.tree_joint[b].map_or(0, |j| model.joints[j].rows.len())))
-            .collect();
-        let nd = if model.dense { 6 * nb + nr } else { 0 };
-        Self {
-            qn: model.q0.clone(),
-            vn: model.v0.clone(),
-            vlo: vec![0.0; 12 * nb],
-            acc: vec![0.0; 12 * nb],
-            lam: vec![0.0; nr],
-            ang: model.angles0.clone(),
-            work: 0.0,
-            hist: vec![0.0; 6 * nb],
-            hprev: 0.0,
-            q: model.q0.clone(),
-            dq: vec![0.0; 12 * nb],
-            qbar: model.q0.clone(),
-            rn: vec![0.0; 12 * nb],
-            mu: vec![0.0; nr],
-            ang1: model.angles0.clone(),
-            theta: vec![0.0; 3 * nb],
-            mom: vec![0.0; 3 * nb],
-            cbody: vec![[0.0; 16]; nb],
-            xbody: vec![[0.0; 36]; nb],
-            blocks,
-            dense: vec![0.0; nd * nd],
-            dpiv: vec![0; nd],
-            drhs: vec![0.0; nd],
-        }
-    }
-}
-
-/// Loads and parameters held over a step.
-pub(crate) struct Held<'a> {
-    /// Input values in `Model::inputs` order.
-    pub inputs: &'a [f64],
-    /// Per-joint damping.
-    pub damping: &'a [f64],
-    /// Per-joint stiffness.
-    pub stiffness: &'a [f64],
-}
-
-/// Residual norms of an evaluation.
-#[derive(Clone, Copy, Debug, Default)]
-pub(crate) struct Norms {
-    /// Scaled residual (max norm).
-    pub res: f64,
-}
+pub(crate) use super::work::{Held, Norms, Work};
+use crate::math::Vec3;
 
 /// Evaluates the residual at the iterate `ws.q` (and, if `jac`, the Jacobian) into the sink;
 /// the right-hand side stored is `−r`. Also returns the step's discrete work in `work_out`.
@@ -255,34 +150,13 @@ pub(crate) fn evaluate(
                     fb[k] += grad[4 + k] * coef;
                 }
                 if jac {
-                    // ½ coef S with S = αβᵀ + βαᵀ, skipping the zero coefficients
+                    // ½ coef S with S = αβᵀ + βαᵀ, as three branch-free 4 × 4 node blocks
                     let (al, be) = (row.u.coeffs(), row.w.coeffs());
                     let hc = 0.5 * coef;
-                    for n in 0..8 {
-                        let (an, bn) = (al[n] * hc, be[n] * hc);
-                        if an == 0.0 && bn == 0.0 {
-                            continue;
-                        }
-                        for m in 0..8 {
-                            let v = an * be[m] + bn * al[m];
-                            if v == 0.0 {
-                                continue;
-                            }
-                            match (n < 4, m < 4) {
-                                (false, false) => cb[bb][4 * (n - 4) + m - 4] += v,
-                                (true, true) => {
-                                    if let Some(a) = a {
-                                        cb[a][4 * n + m] += v;
-                                    }
-                                }
-                                (true, false) => {
-                                    if a.is_some() {
-                                        cab[4 * n + m - 4] += v;
-                                    }
-                                }
-                                (false, true) => {}
-                            }
-                        }
+                    hess_block(&mut cb[bb], &al, &be, hc, 4, 4);
+                    if let Some(a) = a {
+                        hess_block(&mut cb[a], &al, &be, hc, 0, 0);
+                        hess_block(cab, &al, &be, hc, 0, 4);
                     }
                 }
                 grad
@@ -482,132 +356,30 @@ pub(crate) fn evaluate(
     }
     ws.dense = sink_dense;
     ws.blocks = sink_blocks;
-    // projection, body torques, diagonal blocks
-    for b in 0..nb {
-        let br = &model.bodies[b];
-        let qbar = body_nodes(&ws.qbar, b);
-        let dbar = [qbar[1], qbar[2], qbar[3]];
-        let rnode: [Vec3; 4] = std::array::from_fn(|k| read3(&ws.rn, 12 * b + 3 * k));
-        let mut r = project(&rnode, &dbar);
-        for k in 0..3 {
-            r[3 + k] += ws.mom[3 * b + k];
-        }
-        for &(tb, at) in &model.body_torques {
-            if tb != b {
-                continue;
-            }
-            let m = Vec3::new(held.inputs[at], held.inputs[at + 1], held.inputs[at + 2]);
-            let applied = if model.naive_torque {
-                let mut c = Mat3::zeros();
-                for d in &dbar {
-                    c += d * d.transpose();
-                }
-                (Mat3::identity() * c.trace() - c) * m * 0.5
-            } else {
-                m
-            };
-            for k in 0..3 {
-                r[3 + k] -= hh * applied[k];
-            }
-            work += m.dot(&read3(&ws.theta, 3 * b));
-        }
-        let fs = 1.0 / (br.mass * model.lc);
-        let ms = 1.0 / (br.e.trace().abs() + 0.5 * br.e.norm());
-        for k in 0..3 {
-            res = res.max((r[k] * fs).abs()).max((r[3 + k] * ms).abs());
-        }
-        if model.dense {
-            for k in 0..6 {
-                ws.drhs[6 * b + k] = -r[k];
-            }
-        } else {
-            for k in 0..6 {
-                ws.blocks[b].r[k] = -r[k];
-            }
-        }
-        if jac {
-            let q = body_nodes(&ws.q, b);
-            let d = [q[1], q[2], q[3]];
-            let mut blk = ws.xbody[b];
-            node_block(&ws.cbody[b], &dbar, &d, &mut blk);
-            // derivative of the projection: ½ Σ hat(R̃_{dᵢ}) hat(dᵢ)
-            let mut pm = Mat3::zeros();
-            for i in 0..3 {
-                pm += skew(&rnode[i + 1]) * skew(&d[i]);
-            }
-            for rr in 0..3 {
-                for s in 0..3 {
-                    blk[(rr + 3) * 6 + 3 + s] += 0.5 * pm[(rr, s)];
-                }
-            }
-            let mut sink = Sink {
-                model,
-                blocks: &mut ws.blocks,
-                dense: &mut ws.dense,
-                nd,
-            };
-            sink.body_body(b, b, &blk);
-        }
-    }
+    res = res.max(project_bodies(model, ws, held, hh, jac, nd, &mut work));
     *work_out = work;
     Norms { res }
+}
+
+/// `c[4n + m] += (αₙ hc) β_m + (βₙ hc) α_m` for the node rows `r0..r0 + 4` and columns
+/// `c0..c0 + 4` of the 8 × 8 row Hessian `S = αβᵀ + βαᵀ` (see `DotRow::hessian`).
+#[inline]
+fn hess_block(c: &mut [f64; 16], al: &[f64; 8], be: &[f64; 8], hc: f64, r0: usize, c0: usize) {
+    for n in 0..4 {
+        let (an, bn) = (al[r0 + n] * hc, be[r0 + n] * hc);
+        if an == 0.0 && bn == 0.0 {
+            continue;
+        }
+        for m in 0..4 {
+            c[4 * n + m] += an * be[c0 + m] + bn * al[c0 + m];
+        }
+    }
 }
 
 /// Value of the actuator input driving dof `dk` of joint `j` (inputs start at `first`).
 fn actuator_input(model: &Model, j: usize, dk: usize, inputs: &[f64], first: usize) -> f64 {
     let _ = (model, j);
     inputs.get(first + dk).copied().unwrap_or(0.0)
-}
-
-/// Solves the assembled linear system; the solution replaces the right-hand side.
-pub(crate) fn solve(model: &Model, ws: &mut Work) -> bool {
-    if model.dense {
-        let n = ws.drhs.len();
-        if !lu_factor(&mut ws.dense, n, n, &mut ws.dpiv, 1e-14) {
-            return false;
-        }
-        lu_solve(&ws.dense, n, n, &ws.dpiv, &mut ws.drhs);
-        true
-    } else {
-        solve_tree(&mut ws.blocks, &model.order, &model.parent)
-    }
-}
-
-/// Applies the Newton update; returns the scaled update norm.
-pub(crate) fn update(model: &Model, ws: &mut Work) -> f64 {
-    let nb = model.bodies.len();
-    let mut upd = 0.0_f64;
-    for b in 0..nb {
-        let x: [f64; 6] = if model.dense {
-            std::array::from_fn(|k| ws.drhs[6 * b + k])
-        } else {
-            std::array::from_fn(|k| ws.blocks[b].r[k])
-        };
-        let dphi = Vec3::new(x[0], x[1], x[2]);
-        let dth = Vec3::new(x[3], x[4], x[5]);
-        upd = upd.max(dphi.norm() / model.lc).max(dth.norm());
-        let inc = read3(&ws.dq, 12 * b) + dphi;
-        write3(&mut ws.dq, 12 * b, &inc);
-        write3(&mut ws.q, 12 * b, &(read3(&ws.qn, 12 * b) + inc));
-        let em1 = expm1_so3(&dth);
-        for i in 0..3 {
-            let o = 12 * b + 3 + 3 * i;
-            let inc = read3(&ws.dq, o) + em1 * read3(&ws.q, o);
-            write3(&mut ws.dq, o, &inc);
-            write3(&mut ws.q, o, &(read3(&ws.qn, o) + inc));
-        }
-    }
-    for jt in &model.joints {
-        for k in 0..jt.rows.len() {
-            let dm = if model.dense {
-                ws.drhs[6 * nb + jt.row0 + k]
-            } else {
-                ws.blocks[jt.child].r[6 + k]
-            };
-            ws.mu[jt.row0 + k] += dm;
-        }
-    }
-    upd
 }
 
 #[cfg(test)]

@@ -136,26 +136,29 @@ impl Block {
 /// Width of the augmented rows `[D | U | r]`.
 const W: usize = NMAX + 7;
 
-/// Gaussian elimination with partial pivoting of the augmented `n × (n + k)` system held in
-/// `a` (row stride [`W`]); on return columns `n..n + k` hold `D⁻¹ [U | r]`. Returns false for a
-/// pivot below `1e-14` times the largest entry of `D`.
-fn eliminate(a: &mut [f64; NMAX * W], n: usize, k: usize) -> bool {
-    let ncol = n + k;
+/// Gaussian elimination with partial pivoting of the augmented `N × (N + K)` system held in
+/// `a` (row stride [`W`]); on return columns `N..N + K` hold `D⁻¹ [U | r]`. Returns false for a
+/// pivot below `1e-14` times the largest entry of `D`. Sizes are compile-time constants so that
+/// the loops unroll and vectorise (one instance per supernode size, see [`eliminate_block`]).
+fn eliminate<const N: usize, const K: usize>(a: &mut [f64; NMAX * W]) -> bool {
+    // largest |entry| (NaN entries are skipped, as by `f64::max`; a comparison select
+    // vectorises where `f64::max` does not)
     let mut amax = 0.0_f64;
-    for row in a.chunks_exact(W).take(n) {
-        for x in &row[..n] {
-            amax = amax.max(x.abs());
+    for i in 0..N {
+        for j in 0..N {
+            let v = a[i * W + j].abs();
+            amax = if v > amax { v } else { amax };
         }
     }
     if !(amax.is_finite() && amax > 0.0) {
         return false;
     }
     let tiny = 1e-14 * amax;
-    for c in 0..n {
+    for c in 0..N {
         // pivot search in column c
         let mut p = c;
         let mut best = a[c * W + c].abs();
-        for i in c + 1..n {
+        for i in c + 1..N {
             let v = a[i * W + c].abs();
             if v > best {
                 best = v;
@@ -166,39 +169,53 @@ fn eliminate(a: &mut [f64; NMAX * W], n: usize, k: usize) -> bool {
             return false;
         }
         if p != c {
-            let (lo, hi) = a.split_at_mut(p * W);
-            lo[c * W..c * W + ncol].swap_with_slice(&mut hi[..ncol]);
+            for j in c..N + K {
+                a.swap(c * W + j, p * W + j);
+            }
         }
-        let (top, bottom) = a.split_at_mut((c + 1) * W);
-        let piv = &top[c * W..c * W + ncol];
-        let inv = 1.0 / piv[c];
-        for row in bottom.chunks_exact_mut(W).take(n - c - 1) {
-            let f = row[c] * inv;
+        let mut piv = [0.0; W];
+        piv[c + 1..N + K].copy_from_slice(&a[c * W + c + 1..c * W + N + K]);
+        let inv = 1.0 / a[c * W + c];
+        for i in c + 1..N {
+            let f = a[i * W + c] * inv;
             if f != 0.0 {
-                for (x, y) in row[c + 1..ncol].iter_mut().zip(&piv[c + 1..ncol]) {
-                    *x -= f * y;
+                for j in c + 1..N + K {
+                    a[i * W + j] -= f * piv[j];
                 }
             }
         }
     }
-    // back substitution on the k right-hand columns
-    for i in (0..n).rev() {
-        let (top, bottom) = a.split_at_mut((i + 1) * W);
-        let row = &mut top[i * W..i * W + ncol];
-        for (j, lower) in bottom.chunks_exact(W).take(n - i - 1).enumerate() {
-            let f = row[i + 1 + j];
+    // back substitution on the K right-hand columns
+    for i in (0..N).rev() {
+        let mut row = [0.0; K];
+        row.copy_from_slice(&a[i * W + N..i * W + N + K]);
+        for l in i + 1..N {
+            let f = a[i * W + l];
             if f != 0.0 {
-                for (x, y) in row[n..ncol].iter_mut().zip(&lower[n..ncol]) {
-                    *x -= f * y;
+                for j in 0..K {
+                    row[j] -= f * a[l * W + N + j];
                 }
             }
         }
-        let inv = 1.0 / row[i];
-        for x in &mut row[n..ncol] {
-            *x *= inv;
+        let inv = 1.0 / a[i * W + i];
+        for j in 0..K {
+            a[i * W + N + j] = row[j] * inv;
         }
     }
     true
+}
+
+/// [`eliminate`] for a run-time size `n` (6 ≤ n ≤ [`NMAX`]) and `k` ∈ {1, 7} right-hand columns.
+fn eliminate_block(a: &mut [f64; NMAX * W], n: usize, k: usize) -> bool {
+    macro_rules! dispatch {
+        ($($n:literal),*) => {
+            match (n, k) {
+                $(($n, 7) => eliminate::<$n, 7>(a), ($n, _) => eliminate::<$n, 1>(a),)*
+                _ => false,
+            }
+        };
+    }
+    dispatch!(6, 7, 8, 9, 10, 11, 12)
 }
 
 /// Tree block elimination: `order` lists bodies parents first, `parent[b]` the tree parent.
@@ -223,7 +240,7 @@ pub fn solve_tree(blocks: &mut [Block], order: &[usize], parent: &[Option<usize>
                     row[n] = b.r[i];
                 }
             }
-            if !eliminate(&mut a, n, k) {
+            if !eliminate_block(&mut a, n, k) {
                 return false;
             }
             if !has_parent {

@@ -1,0 +1,37 @@
+//! Callgrind driver of the core step: `cargo build --profile profiling --example step_profile`,
+//! then `valgrind --tool=callgrind target/profiling/examples/step_profile dp 2000` (or
+//! `chain100 200`). Same settings as `benches/step.rs` (order 2, h = 1e-3, tolerance 1e-10).
+use triad::mechanics::{step, Model, SolverSettings, State};
+
+#[path = "../tests/common/mod.rs"]
+#[allow(clippy::all, dead_code)]
+mod common;
+
+fn main() {
+    let args: Vec<String> = std::env::args().collect();
+    let which = args.get(1).map_or("dp", String::as_str);
+    let n: usize = args.get(2).and_then(|s| s.parse().ok()).unwrap_or(2000);
+    let def = match which {
+        "chain10" => common::chain(10),
+        "chain100" => common::chain(100),
+        "chain1000" => common::chain(1000),
+        "top" => common::heavy_top(),
+        _ => common::double_pendulum(),
+    };
+    let s = SolverSettings {
+        max_step: 1e-3,
+        order: 2,
+        tolerance: 1e-10,
+        max_iterations: 20,
+    };
+    let m = Model::new(&def, s).expect("model");
+    let mut st = State::new(&m);
+    let mut it = 0;
+    for _ in 0..n {
+        it += step(&m, &mut st, 1e-3).expect("step").iterations;
+    }
+    println!(
+        "{which}: {n} steps, {:.3} iterations per step",
+        it as f64 / n as f64
+    );
+}

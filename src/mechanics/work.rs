@@ -1,0 +1,111 @@
+//! The preallocated Newton workspace of a step and the loads held over it.
+
+use super::model::Model;
+use super::solver::Block;
+
+/// Preallocated Newton workspace (all sized at `State::new`).
+#[derive(Clone, Debug)]
+pub(crate) struct Work {
+    /// Stage start: coordinates, velocities (12 per body).
+    pub qn: Vec<f64>,
+    /// Stage start velocities (high part).
+    pub vn: Vec<f64>,
+    /// Stage start velocities, low part: `vn + vlo` carries the velocity in double-double so
+    /// that the recursion `v_{n+1} = v_n + 2a/h` accumulates no rounding (energy drift).
+    pub vlo: Vec<f64>,
+    /// `a = (q − qₙ) − h vₙ` of the last evaluation (12 per body).
+    pub acc: Vec<f64>,
+    /// Multiplier memory `λ/2` per active row (warm start `μ = h² λ/2`).
+    pub lam: Vec<f64>,
+    /// Unwrapped turn angles at the stage start, rad.
+    pub ang: Vec<f64>,
+    /// Accumulated work at the stage start, J.
+    pub work: f64,
+    /// Mean rates of the last stage `(Δφ/h, θ/h)`, 6 per body (predictor history).
+    pub hist: Vec<f64>,
+    /// Size of the last stage, s (0: no history).
+    pub hprev: f64,
+    /// Newton iterate.
+    pub q: Vec<f64>,
+    /// Increment `q − qₙ`, kept separately so that velocities do not suffer the cancellation
+    /// of large positions.
+    pub dq: Vec<f64>,
+    /// Midpoint `½(qₙ + q)`.
+    pub qbar: Vec<f64>,
+    /// Node residual `R̃` (12 per body).
+    pub rn: Vec<f64>,
+    /// Scaled multipliers.
+    pub mu: Vec<f64>,
+    /// Unwrapped turn angles at the iterate.
+    pub ang1: Vec<f64>,
+    /// Discrete rotation increments `θ_b = ½ Σ d̄ⁱ × (dᵢ − dᵢₙ)` (3 per body).
+    pub theta: Vec<f64>,
+    /// Scaled joint torques on the projected moment rows (3 per body).
+    pub mom: Vec<f64>,
+    /// Per-body 4 × 4 node coupling `C` (mass + ½ Σ μ S on the diagonal).
+    pub cbody: Vec<[f64; 16]>,
+    /// Per-body extra 6 × 6 diagonal Jacobian terms.
+    pub xbody: Vec<[f64; 36]>,
+    /// Tree blocks (one per body).
+    pub blocks: Vec<Block>,
+    /// Dense matrix (loop systems), row-major `n × n`.
+    pub dense: Vec<f64>,
+    /// Dense pivots.
+    pub dpiv: Vec<usize>,
+    /// Dense right-hand side / solution.
+    pub drhs: Vec<f64>,
+}
+
+impl Work {
+    /// Workspace for `model`.
+    pub fn new(model: &Model) -> Self {
+        let nb = model.bodies.len();
+        let nr = model.nrows;
+        let blocks = (0..nb)
+            .map(|b| Block::new(6 + model.tree_joint[b].map_or(0, |j| model.joints[j].rows.len())))
+            .collect();
+        let nd = if model.dense { 6 * nb + nr } else { 0 };
+        Self {
+            qn: model.q0.clone(),
+            vn: model.v0.clone(),
+            vlo: vec![0.0; 12 * nb],
+            acc: vec![0.0; 12 * nb],
+            lam: vec![0.0; nr],
+            ang: model.angles0.clone(),
+            work: 0.0,
+            hist: vec![0.0; 6 * nb],
+            hprev: 0.0,
+            q: model.q0.clone(),
+            dq: vec![0.0; 12 * nb],
+            qbar: model.q0.clone(),
+            rn: vec![0.0; 12 * nb],
+            mu: vec![0.0; nr],
+            ang1: model.angles0.clone(),
+            theta: vec![0.0; 3 * nb],
+            mom: vec![0.0; 3 * nb],
+            cbody: vec![[0.0; 16]; nb],
+            xbody: vec![[0.0; 36]; nb],
+            blocks,
+            dense: vec![0.0; nd * nd],
+            dpiv: vec![0; nd],
+            drhs: vec![0.0; nd],
+        }
+    }
+}
+
+/// Loads and parameters held over a step.
+pub(crate) struct Held<'a> {
+    /// Input values in `Model::inputs` order.
+    pub inputs: &'a [f64],
+    /// Per-joint damping.
+    pub damping: &'a [f64],
+    /// Per-joint stiffness.
+    pub stiffness: &'a [f64],
+}
+
+/// Residual norms of an evaluation.
+#[derive(Clone, Copy, Debug, Default)]
+pub(crate) struct Norms {
+    /// Scaled residual (max norm).
+    pub res: f64,
+}
