@@ -23,12 +23,16 @@ struct Args {
     t_end: f64,
     dt_out: f64,
     out: PathBuf,
+    /// `internal`: the PD law is in the model (stiffness kp, damping kd from the spec) and the
+    /// input is the constant kp q_set + tau_ff; `zoh`: tau from the outputs once per step.
+    pd_internal: bool,
 }
 
 fn parse_args() -> Result<Args, Box<dyn Error>> {
     let mut it = std::env::args().skip(1);
     let (mut spec, mut model, mut out) = (None, None, None);
     let (mut h, mut t_end, mut dt_out) = (None, None, None);
+    let mut pd_internal = false;
     while let Some(k) = it.next() {
         let v = it.next().ok_or(format!("{k} needs a value"))?;
         match k.as_str() {
@@ -38,6 +42,7 @@ fn parse_args() -> Result<Args, Box<dyn Error>> {
             "--h" => h = Some(v.parse()?),
             "--t-end" => t_end = Some(v.parse()?),
             "--dt-out" => dt_out = Some(v.parse()?),
+            "--pd" => pd_internal = v == "internal",
             _ => return Err(format!("unknown argument {k}").into()),
         }
     }
@@ -48,6 +53,7 @@ fn parse_args() -> Result<Args, Box<dyn Error>> {
         t_end: t_end.ok_or("--t-end missing")?,
         dt_out: dt_out.ok_or("--dt-out missing")?,
         out: out.ok_or("--out missing")?,
+        pd_internal,
     })
 }
 
@@ -161,8 +167,12 @@ fn main() -> Result<(), Box<dyn Error>> {
         for i in 0..nsub {
             let state = sim.state_mut();
             for &(j, slot, kp, kd, qs, ff) in &pd {
-                let out = &state.outputs().joints[j];
-                let tau = kp * (qs - out.q[0]) - kd * out.qd[0] + ff;
+                let tau = if a.pd_internal {
+                    kp * qs + ff
+                } else {
+                    let out = &state.outputs().joints[j];
+                    kp * (qs - out.q[0]) - kd * out.qd[0] + ff
+                };
                 state.inputs_mut()[slot] = tau;
             }
             for (slots, tau, t0, t1) in &torques {
@@ -185,7 +195,11 @@ fn main() -> Result<(), Box<dyn Error>> {
         settings.order,
         a.h,
         nout * nsub,
-        if pd.is_empty() { "none" } else { "zoh-per-step" }
+        match (pd.is_empty(), a.pd_internal) {
+            (true, _) => "none",
+            (false, true) => "internal-continuous",
+            (false, false) => "zoh-per-step",
+        }
     );
     text.push_str(&header.join(","));
     text.push('\n');

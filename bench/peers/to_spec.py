@@ -34,7 +34,11 @@ def quat_rotate(q, v):
     return [sum(r[i][k] * v[k] for k in range(3)) for i in range(3)]
 
 
-def convert(model, h, order=2, t_end=None, dt_out=None, tolerance=1e-10):
+def convert(model, h, order=2, t_end=None, dt_out=None, tolerance=1e-10, pd_internal=False):
+    """The triad spec of a neutral model. With `pd_internal`, a `joint_pd` controller
+    tau = kp (q_set - q) - kd qd + tau_ff becomes part of the model: joint stiffness kp (about 0)
+    and damping kd, integrated implicitly with the scheme's discrete gradients; the remaining
+    constant torque kp q_set + tau_ff is the joint input (set by the runner)."""
     sim = model.get("sim", {})
     t_end = t_end if t_end is not None else sim.get("t_end", 1.0)
     dt_out = dt_out if dt_out is not None else sim.get("dt_out", 0.1)
@@ -73,6 +77,10 @@ def convert(model, h, order=2, t_end=None, dt_out=None, tolerance=1e-10):
             raise SystemExit(f"joint type {j['type']} not supported by the adapter")
         if name in actuated:
             joint["actuated"] = True
+            if pd_internal:
+                k = ctrl["joints"].index(name)
+                joint["stiffness"] = float(ctrl["kp"][k])
+                joint["damping"] = float(ctrl["kd"][k])
         joints.append(joint)
     loads = []
     torque_bodies = sorted({i["body"] for i in model.get("inputs", []) if i["type"] == "body_torque_world"})

@@ -5,7 +5,8 @@
 
 Both variants first turn the neutral model into a triad spec (`to_spec.py`).
 * native: runs the in-process `Simulation` (`target/release/examples/peers_native`), which times
-  only its stepping loop.
+  only its stepping loop; a `joint_pd` controller runs inside the model, continuously (joint
+  stiffness kp, damping kd, constant torque kp q_set + tau_ff), integrated implicitly.
 * fmu: builds the FMU with `triad build`, drives it with fmpy at communication step h (one internal
   step per communication step), closes the PD loop in Python once per step and times the loop
   (doStep + the get/set calls), so the cost of the FMI boundary and of fmpy's Python loop shows.
@@ -181,9 +182,9 @@ def main():
     with tempfile.TemporaryDirectory() as d:
         spec_path = os.path.join(d, "spec.json")
         with open(spec_path, "w") as f:
-            json.dump(to_spec.convert(model, a.h, order, a.t_end, a.dt_out), f)
+            json.dump(to_spec.convert(model, a.h, order, a.t_end, a.dt_out, pd_internal=a.variant == "native"), f)
         if a.variant == "native":
-            r = subprocess.run([NATIVE, "--spec", spec_path, "--model", a.model, "--h", repr(a.h),
+            r = subprocess.run([NATIVE, "--pd", "internal", "--spec", spec_path, "--model", a.model, "--h", repr(a.h),
                                 "--t-end", repr(a.t_end), "--dt-out", repr(a.dt_out), "--out", a.out],
                                capture_output=True, text=True)
             if r.returncode != 0:
