@@ -88,7 +88,12 @@ pub fn draw(path: &Path, model: &str, series: &[Series]) -> Result<(), Box<dyn s
         "rad or m",
         &joints,
     )?;
-    panel(&bottom, &format!("{model}: energy and work"), "energy, work (J)", &energy)?;
+    panel(
+        &bottom,
+        &format!("{model}: energy and work"),
+        "energy, work (J)",
+        &energy,
+    )?;
     root.present()?;
     Ok(())
 }
