@@ -187,6 +187,30 @@ pub struct VariableTable {
     pub vars: Vec<Variable>,
 }
 
+impl Causality {
+    /// The attribute value in modelDescription.xml (`parameter`, `input`, `output`).
+    #[must_use]
+    pub fn fmi_name(self) -> &'static str {
+        match self {
+            Self::Parameter => "parameter",
+            Self::Input => "input",
+            Self::Output => "output",
+        }
+    }
+}
+
+impl Variability {
+    /// The attribute value in modelDescription.xml (`fixed`, `tunable`, `continuous`).
+    #[must_use]
+    pub fn fmi_name(self) -> &'static str {
+        match self {
+            Self::Fixed => "fixed",
+            Self::Tunable => "tunable",
+            Self::Continuous => "continuous",
+        }
+    }
+}
+
 impl VariableTable {
     /// Builds the table of a model definition (names from `def`), parameters starting at the
     /// values of `def` and `settings`. Order: inputs (in `Model::inputs` order), outputs (per

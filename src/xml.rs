@@ -5,7 +5,7 @@
 use crate::fmu::contract::Spec;
 use crate::fmu::{Category, CAPABILITIES};
 use crate::mechanics::SolverSettings;
-use crate::variables::{Causality, Initial, VarType, Variability, Variable, VariableTable};
+use crate::variables::{Causality, Initial, VarType, Variable, VariableTable};
 use quick_xml::events::{BytesDecl, BytesText, Event};
 use quick_xml::Writer;
 use std::collections::BTreeSet;
@@ -99,22 +99,6 @@ pub fn real(x: f64) -> String {
     }
 }
 
-fn causality(c: Causality) -> &'static str {
-    match c {
-        Causality::Parameter => "parameter",
-        Causality::Input => "input",
-        Causality::Output => "output",
-    }
-}
-
-fn variability(v: Variability) -> &'static str {
-    match v {
-        Variability::Fixed => "fixed",
-        Variability::Tunable => "tunable",
-        Variability::Continuous => "continuous",
-    }
-}
-
 type W = Writer<Vec<u8>>;
 
 fn unit_definitions(w: &mut W, table: &VariableTable) -> io::Result<()> {
@@ -159,8 +143,8 @@ fn scalar_variable(w: &mut W, v: &Variable) -> io::Result<()> {
     if !v.description.is_empty() {
         e = e.with_attribute(("description", v.description.as_str()));
     }
-    e = e.with_attribute(("causality", causality(v.causality)));
-    e = e.with_attribute(("variability", variability(v.variability)));
+    e = e.with_attribute(("causality", v.causality.fmi_name()));
+    e = e.with_attribute(("variability", v.variability.fmi_name()));
     match v.initial {
         Initial::Exact if v.causality != Causality::Input => {
             e = e.with_attribute(("initial", "exact"))

@@ -3,7 +3,7 @@
 use std::path::{Path, PathBuf};
 
 use triad::mechanics::Model;
-use triad::variables::{Causality, VarType, Variability, VariableTable};
+use triad::variables::{Causality, VarType, VariableTable};
 
 use super::{load, CliError};
 
@@ -40,22 +40,6 @@ fn plural(n: usize, one: &str, many: &str) -> String {
     format!("{n} {}", if n == 1 { one } else { many })
 }
 
-fn causality(c: Causality) -> &'static str {
-    match c {
-        Causality::Parameter => "parameter",
-        Causality::Input => "input",
-        Causality::Output => "output",
-    }
-}
-
-fn variability(v: Variability) -> &'static str {
-    match v {
-        Variability::Fixed => "fixed",
-        Variability::Tunable => "tunable",
-        Variability::Continuous => "continuous",
-    }
-}
-
 /// Prints the variable table with aligned columns.
 pub fn describe(model: &str) -> Result<(), CliError> {
     let spec = load(model)?;
@@ -68,8 +52,8 @@ pub fn describe(model: &str) -> Result<(), CliError> {
             [
                 v.name.clone(),
                 v.vr.to_string(),
-                causality(v.causality).into(),
-                variability(v.variability).into(),
+                v.causality.fmi_name().into(),
+                v.variability.fmi_name().into(),
                 if v.ty == VarType::Integer {
                     "Integer"
                 } else {
