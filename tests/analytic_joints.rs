@@ -11,6 +11,8 @@
 //! * a Grashof crank-rocker four-bar (one loop-closing revolute, parallel axes, gravity in the
 //!   plane) for 10 s: energy constant to 1e-10 relative, constraints below 1e-10.
 
+mod common;
+
 use triad::math::{exp_so3, Mat3, Vec3};
 use triad::mechanics::{
     step, BodyDef, Frame, FreeBodyInitial, JointDef, JointInitial, JointType, Model, ModelDef,
@@ -270,70 +272,10 @@ fn b8_free_floating_actuators_conserve_momenta() {
     }
 }
 
-/// Crank-rocker four-bar: ground pivots O1 = 0 and O2 = (g, 0, 0), crank a, coupler b, rocker c,
-/// each link along its body x axis from its proximal joint; the rocker–ground joint closes.
-fn four_bar(theta1: f64, crank_rate: f64) -> ModelDef {
-    let (g, a, b, c) = (2.0, 0.6, 2.2, 1.5);
-    let link = |name: &str, len: f64| {
-        body(
-            name,
-            len,
-            Vec3::new(0.5 * len, 0.0, 0.0),
-            box_inertia(len, len, 0.05, 0.05),
-        )
-    };
-    // coupler end B: intersection of |B − A| = b and |B − O2| = c, upper branch
-    let pa = Vec3::new(a * theta1.cos(), a * theta1.sin(), 0.0);
-    let o2 = Vec3::new(g, 0.0, 0.0);
-    let dist = (o2 - pa).norm();
-    let along = (b * b - c * c + dist * dist) / (2.0 * dist);
-    let u = (o2 - pa) / dist;
-    let pb = pa + u * along + Vec3::z().cross(&u) * (b * b - along * along).sqrt();
-    let th2 = (pb - pa).y.atan2((pb - pa).x);
-    let th3 = (o2 - pb).y.atan2((o2 - pb).x);
-    let mut close = joint(JointType::Revolute, None, 2, o2, vec![], vec![]);
-    close.name = "close".into();
-    close.loop_closing = true;
-    close.child_frame.translation = Vec3::new(c, 0.0, 0.0);
-    let joints = vec![
-        joint(
-            JointType::Revolute,
-            None,
-            0,
-            Vec3::zeros(),
-            vec![theta1],
-            vec![crank_rate],
-        ),
-        joint(
-            JointType::Revolute,
-            Some(0),
-            1,
-            Vec3::new(a, 0.0, 0.0),
-            vec![th2 - theta1],
-            vec![0.0],
-        ),
-        joint(
-            JointType::Revolute,
-            Some(1),
-            2,
-            Vec3::new(b, 0.0, 0.0),
-            vec![th3 - th2],
-            vec![0.0],
-        ),
-        close,
-    ];
-    model(
-        vec![link("crank", a), link("coupler", b), link("rocker", c)],
-        joints,
-        Vec3::new(0.0, -9.81, 0.0),
-    )
-}
-
-/// Four-bar for 10 s: energy and constraints at round-off level.
 #[test]
 fn four_bar_keeps_energy_and_constraints() {
     let h = 0.005;
-    let (m, mut s) = build(&four_bar(1.0, 3.0), h, 2);
+    let (m, mut s) = build(&common::four_bar(1.0, 3.0), h, 2);
     eprintln!("four-bar notes: {:?}", m.notes());
     let e0 = s.outputs().energy;
     let (mut de, mut cr) = (0.0_f64, s.outputs().constraint_residual);
