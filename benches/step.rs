@@ -1,8 +1,10 @@
 //! Criterion benches of one EM step (order 2, h = 1e-3): the peers' double pendulum, heavy top
-//! and chainN (N = 10, 100, 1000). Run: `cargo bench --bench step -- --warm-up-time 1
+//! and chainN (N = 10, 100, 1000). `step/*` is the integrator step alone (`step_state`, what
+//! every sub-step of a communication step costs); `outputs/*` is one refresh of the outputs
+//! (velocity projection, energy, momenta, joint coordinates; once per communication step). Run: `cargo bench --bench step -- --warm-up-time 1
 //! --measurement-time 3`.
 use criterion::{criterion_group, criterion_main, BenchmarkId, Criterion};
-use triad::mechanics::{step, Model, ModelDef, SolverSettings, State};
+use triad::mechanics::{step_state, Model, ModelDef, SolverSettings, State};
 
 #[path = "../tests/common/mod.rs"]
 #[allow(clippy::all)]
@@ -21,7 +23,7 @@ fn setup(def: &ModelDef) -> (Model, State) {
 }
 
 fn bench(c: &mut Criterion) {
-    let mut g = c.benchmark_group("step");
+    let mut g = c.benchmark_group("em");
     let cases: Vec<(String, ModelDef)> = vec![
         ("double_pendulum".into(), common::double_pendulum()),
         ("heavy_top".into(), common::heavy_top()),
@@ -33,14 +35,17 @@ fn bench(c: &mut Criterion) {
         let (m, mut s) = setup(&def);
         // a short run-in so that the state is generic (moving, multipliers warm)
         for _ in 0..20 {
-            step(&m, &mut s, 1e-3).expect("step");
+            step_state(&m, &mut s, 1e-3).expect("step");
         }
-        g.bench_with_input(BenchmarkId::from_parameter(&name), &name, |b, _| {
-            b.iter(|| step(&m, &mut s, 1e-3).expect("step"));
+        g.bench_with_input(BenchmarkId::new("step", &name), &name, |b, _| {
+            b.iter(|| step_state(&m, &mut s, 1e-3).expect("step"));
+        });
+        g.bench_with_input(BenchmarkId::new("outputs", &name), &name, |b, _| {
+            b.iter(|| s.refresh_outputs(&m));
         });
         let mut it = 0;
         for _ in 0..100 {
-            it += step(&m, &mut s, 1e-3).expect("step").iterations;
+            it += step_state(&m, &mut s, 1e-3).expect("step").iterations;
         }
         eprintln!(
             "{name}: {:.2} Newton iterations per step",

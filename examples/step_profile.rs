@@ -1,7 +1,7 @@
 //! Callgrind driver of the core step: `cargo build --profile profiling --example step_profile`,
 //! then `valgrind --tool=callgrind target/profiling/examples/step_profile dp 2000` (or
 //! `chain100 200`). Same settings as `benches/step.rs` (order 2, h = 1e-3, tolerance 1e-10).
-use triad::mechanics::{step, Model, SolverSettings, State};
+use triad::mechanics::{step_state, Model, SolverSettings, State};
 
 #[path = "../tests/common/mod.rs"]
 #[allow(clippy::all, dead_code)]
@@ -28,7 +28,7 @@ fn main() {
     let mut st = State::new(&m);
     let mut it = 0;
     for _ in 0..n {
-        it += step(&m, &mut st, 1e-3).expect("step").iterations;
+        it += step_state(&m, &mut st, 1e-3).expect("step").iterations;
     }
     println!(
         "{which}: {n} steps, {:.3} iterations per step",

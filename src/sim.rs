@@ -2,7 +2,7 @@
 //! internal sub-steps, with roll-back on failure. Both front ends call this, so their results are
 //! identical by construction.
 
-use crate::mechanics::{step, Model, ModelDef, ModelError, SolverSettings, State, StepError};
+use crate::mechanics::{step_state, Model, ModelDef, ModelError, SolverSettings, State, StepError};
 
 /// Why a communication step stopped short.
 #[derive(Debug, Clone, PartialEq)]
@@ -55,6 +55,12 @@ impl Simulation {
         &self.state
     }
 
+    /// Recomputes the outputs from the current state (after a tunable parameter changed
+    /// between communication steps).
+    pub fn refresh_outputs(&mut self) {
+        self.state.refresh_outputs(&self.model);
+    }
+
     /// The current state, mutable (inputs, tunable parameters, restoring snapshots).
     pub fn state_mut(&mut self) -> &mut State {
         &mut self.state
@@ -102,7 +108,7 @@ impl Simulation {
         let dt = h / n as f64;
         let t_end = t0 + h;
         for k in 0..n {
-            if let Err(error) = step(&self.model, &mut self.state, dt) {
+            if let Err(error) = step_state(&self.model, &mut self.state, dt) {
                 if k > 0 {
                     self.state.clone_from(&self.saved);
                 }
@@ -113,6 +119,8 @@ impl Simulation {
             }
         }
         self.state.set_time(t_end);
+        // outputs once per communication step, after the last sub-step
+        self.state.refresh_outputs(&self.model);
         Ok(())
     }
 }

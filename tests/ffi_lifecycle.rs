@@ -304,6 +304,21 @@ fn parameters_before_initialisation_and_tunables_between_steps() {
     );
     assert_eq!(f.get_real(&[damping]).1, vec![0.3]);
     assert_eq!(f.step(0.0, 0.01), fmi2OK);
+    // a new stiffness shows in the energy output at once: E' − E = ½ k q²
+    let (stiff, q, e) = (
+        m.vr("joint.shoulder.stiffness"),
+        m.vr("joint.shoulder.q"),
+        m.vr("system.energy"),
+    );
+    let before = f.get_real(&[q, e]).1;
+    assert_eq!(f.set_real(&[stiff], &[2.0]), fmi2OK);
+    let after = f.get_real(&[e]).1[0];
+    let expected = before[1] + 0.5 * 2.0 * before[0] * before[0];
+    assert!(
+        (after - expected).abs() <= 1e-12 * expected.abs().max(1.0) && before[0] != 0.0,
+        "energy {} → {after}, expected {expected}",
+        before[1]
+    );
     let order = m.vr("solver.order");
     let mut v = [0i32];
     assert_eq!(

@@ -227,6 +227,7 @@ impl Instance {
         if rebuilt.is_some() {
             self.sim = rebuilt;
         }
+        let mut springs_changed = false;
         for (acc, value) in updates {
             match (acc, self.sim.as_mut()) {
                 (Accessor::Input(i), Some(sim)) => {
@@ -243,9 +244,16 @@ impl Instance {
                     sim.state_mut().set_damping(j, value)
                 }
                 (Accessor::Stiffness(j), Some(sim)) if self.mode == Mode::StepComplete => {
-                    sim.state_mut().set_stiffness(j, value)
+                    sim.state_mut().set_stiffness(j, value);
+                    springs_changed = true;
                 }
                 _ => {}
+            }
+        }
+        // the spring energy is an output: show the new stiffness at once, not after a step
+        if springs_changed {
+            if let Some(sim) = self.sim.as_mut() {
+                sim.refresh_outputs();
             }
         }
         Ok(Status::Ok)

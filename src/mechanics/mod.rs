@@ -9,7 +9,9 @@
 //!
 //! Use: `Model::new(&def, settings)` once (validates, orders the tree, finds redundant loop
 //! constraints, computes the initial state), `State::new(&model)`, then `step(&model, &mut state, h)`
-//! as often as needed; `state.outputs()` holds every output after each step.
+//! as often as needed; `state.outputs()` holds every output after each step. `step_state` is the
+//! integrator step alone (outputs refreshed on demand by `State::refresh_outputs`), for runs that
+//! read outputs once per communication step.
 
 mod assemble;
 pub mod body;
@@ -39,4 +41,4 @@ pub use error::{ModelError, StepError};
 pub use model::{InputSlot, Model};
 pub use outputs::{BodyOutput, JointOutput, Outputs};
 pub use state::State;
-pub use step::{gamma1, step, StepStats};
+pub use step::{gamma1, step, step_state, StepStats};

@@ -65,8 +65,9 @@ impl State {
 
     /// Recomputes the outputs from the current state: first the M-orthogonal projection of the
     /// nodal velocities onto the admissible ones (one linear solve, `projection.rs`), then every
-    /// output. Allocates nothing.
-    pub(crate) fn refresh_outputs(&mut self, model: &Model) {
+    /// output. Allocates nothing. [`crate::mechanics::step`] calls it after every step;
+    /// [`crate::mechanics::step_state`] leaves it to the caller.
+    pub fn refresh_outputs(&mut self, model: &Model) {
         // a singular projection (impossible for a regular model) falls back to the nodal
         // velocities inside `project_velocities`
         let _ = project_velocities(model, &self.q, &self.v, &mut self.pw);

@@ -30,12 +30,26 @@ pub fn gamma1() -> f64 {
     1.0 / (2.0 - 2f64.cbrt())
 }
 
-/// Advances `state` by `h` seconds with the model's order; inputs are held constant.
-/// On error the state is unchanged. Allocates nothing.
+/// Advances `state` by `h` seconds with the model's order (inputs held constant) and refreshes
+/// its outputs ([`step_state`] followed by [`State::refresh_outputs`]). On error the state is
+/// unchanged. Allocates nothing.
 ///
 /// # Errors
 /// [`StepError`] when Newton fails, a value is not finite, or `h` is not positive.
 pub fn step(model: &Model, state: &mut State, h: f64) -> Result<StepStats, StepError> {
+    let stats = step_state(model, state, h)?;
+    state.refresh_outputs(model);
+    Ok(stats)
+}
+
+/// Advances `state` by `h` seconds like [`step`] but leaves the outputs as they were: the
+/// integrator step alone. A run of several sub-steps per communication step calls this for each
+/// and [`State::refresh_outputs`] once at the end (the outputs' velocity projection and energy
+/// cost about a quarter of a step). On error the state is unchanged. Allocates nothing.
+///
+/// # Errors
+/// [`StepError`] when Newton fails, a value is not finite, or `h` is not positive.
+pub fn step_state(model: &Model, state: &mut State, h: f64) -> Result<StepStats, StepError> {
     if !(h.is_finite() && h > 0.0) {
         return Err(StepError::BadStep(h));
     }
@@ -84,7 +98,6 @@ pub fn step(model: &Model, state: &mut State, h: f64) -> Result<StepStats, StepE
     state.hist.copy_from_slice(&ws.hist);
     state.hprev = ws.hprev;
     state.t += h;
-    state.refresh_outputs(model);
     Ok(stats)
 }
 
