@@ -1,7 +1,8 @@
 //! Energy balance with inputs, springs and dampers (theory.md §3.4, B7): the discrete work of
 //! every load is exact — motor `τ n̄·(θᴮ − θᴬ)`, slide force `F Δs`, body torque `m·θ`, body force
-//! `f·Δφ`; springs use the discrete gradients `−(V(ϑ₁) − V(ϑ₀))/δ`, `−k s̄`; dampers dissipate
-//! `c δ²/h` — so `E_n − E_0 = W_n` (inputs' work minus dissipation) to ≤ 1e-10 relative, and free-
+//! `f·Δφ`; springs use exact discrete gradients (angle: the `atan2` gradient of `turn`, which
+//! releases `½k(ϑ₁² − ϑ₀²)`; slide: `−k s̄`); dampers dissipate `c Δϑ²/h`, `c Δs²/h` and, on a
+//! spherical joint, `c |θᴮ − θᴬ|²/h` — so `E_n − E_0 = W_n` (inputs' work minus dissipation) to ≤ 1e-10 relative, and free-
 //! floating systems keep `p` and `L`.
 
 mod common;

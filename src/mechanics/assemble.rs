@@ -13,6 +13,7 @@ use super::def::JointType;
 use super::error::ModelError;
 use super::joint::{Dof, JointGeom};
 use super::model::{DofRt, JointRt, Model};
+use super::turn::TurnRt;
 use crate::math::{matrix_to_quat, quat_to_matrix, Vec3};
 
 /// Fills the joint, tree and initial-state parts of `model`.
@@ -74,11 +75,20 @@ pub(crate) fn build(model: &mut Model, joint_input: &[Option<usize>]) -> Result<
         } else {
             g.dofs
                 .iter()
-                .map(|d| match d {
-                    Dof::Slide(r) => DofRt::Slide(*r),
-                    Dof::Turn(n) => DofRt::Turn(*n),
+                .enumerate()
+                .map(|(k, d)| match d {
+                    Dof::Slide(r) => Ok(DofRt::Slide(*r)),
+                    Dof::Turn(n) => {
+                        let (sin, cos) = g.angle_rows(k).ok_or_else(|| {
+                            ModelError::Invalid(format!(
+                                "joint '{}': coordinate {k} has no angle invariants",
+                                jd.name
+                            ))
+                        })?;
+                        Ok(DofRt::Turn(TurnRt { axis: *n, sin, cos }))
+                    }
                 })
-                .collect()
+                .collect::<Result<_, ModelError>>()?
         };
         // unwrapping memory starts from the given initial angle (q = 4.0 stays 4.0)
         let qa = super::joint::body_nodes(&model.q0, g.parent);
@@ -225,15 +235,6 @@ pub(crate) fn write3(x: &mut [f64], at: usize, v: &Vec3) {
 #[must_use]
 pub(crate) fn read3(x: &[f64], at: usize) -> Vec3 {
     Vec3::new(x[at], x[at + 1], x[at + 2])
-}
-
-/// Raw (wrapped) angle of turn coordinate `dk` of joint `j`, rad (coordinate index = dof index
-/// for every non-spherical joint).
-pub(crate) fn turn_angle(model: &Model, j: usize, dk: usize, qa: &Nodes, qb: &Nodes) -> f64 {
-    let g = &model.joints[j].geom;
-    let mut raw = [0.0; 4];
-    g.coords(qa, qb, &mut raw[..g.kind.nq()]);
-    raw[dk]
 }
 
 /// Joint coordinates and rates at the nodes; turn coordinates take the unwrapped `angles`

@@ -246,6 +246,22 @@ impl JointGeom {
         })
     }
 
+    /// The invariants `(s, c)` with `atan2(s, c)` = the `k`-th coordinate, for rotational
+    /// coordinates (the angles of [`JointGeom::coords`]: `s`, `c` are entries of `[a]ᵀ[b]`);
+    /// `None` for slides and spherical joints.
+    #[must_use]
+    pub fn angle_rows(&self, k: usize) -> Option<(DotRow, DotRow)> {
+        let ab = |i: usize, j: usize| DotRow::new(self.a[i], self.b[j], 0.0);
+        match (self.kind, k) {
+            (JointType::Revolute, 0) | (JointType::Cylindrical, 1) | (JointType::Planar, 2) => {
+                Some((ab(1, 0), ab(0, 0)))
+            }
+            (JointType::Universal, 0) => Some((ab(2, 1), ab(1, 1))),
+            (JointType::Universal, 1) => Some((ab(0, 2), ab(0, 0))),
+            _ => None,
+        }
+    }
+
     /// The axes `[a]` and `[b]` (columns, world frame) at nodes `qa`, `qb`.
     #[must_use]
     pub fn axes(&self, qa: &Nodes, qb: &Nodes) -> (Mat3, Mat3) {

@@ -243,32 +243,6 @@ pub(crate) fn torque_jac(
     }
 }
 
-/// Jacobian of `∓hh τ n̄` through `dτ ≈ −κ n̄·(δθᴮ − δθᴬ)`, `kap = hh κ`.
-pub(crate) fn nn_terms(
-    x_bb: &mut [f64; 36],
-    x_ba: &mut [f64; 36],
-    x_ab: &mut [f64; 36],
-    x_aa: &mut [f64; 36],
-    kap: f64,
-    n: &Vec3,
-    has_a: bool,
-) {
-    if kap == 0.0 {
-        return;
-    }
-    for r in 0..3 {
-        for c in 0..3 {
-            let v = kap * n[r] * n[c];
-            x_bb[(r + 3) * 6 + 3 + c] += v;
-            if has_a {
-                x_ba[(r + 3) * 6 + 3 + c] -= v;
-                x_ab[(r + 3) * 6 + 3 + c] -= v;
-                x_aa[(r + 3) * 6 + 3 + c] += v;
-            }
-        }
-    }
-}
-
 /// `exp(θ̂) − I = s θ̂ + c θ̂²` without the cancellation of subtracting `I`
 /// (`c = 2 sin²(|θ|/2)/|θ|²`), so that director increments stay accurate to round-off.
 #[must_use]

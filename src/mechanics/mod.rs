@@ -31,6 +31,7 @@ mod projection;
 mod solver;
 mod state;
 mod step;
+mod turn;
 mod work;
 
 pub use def::{

@@ -8,6 +8,7 @@ use super::constraint::{DotRow, LinVec};
 use super::def::{ModelDef, SolverSettings};
 use super::error::ModelError;
 use super::joint::JointGeom;
+pub(crate) use super::turn::TurnRt;
 use crate::math::{Mat3, Vec3};
 
 /// One scalar input of the model, in the order of `State::inputs`.
@@ -58,13 +59,15 @@ pub(crate) struct BodyRt {
 }
 
 /// A joint coordinate that loads act on.
+// held inline in the joints' preallocated vectors: no box, no indirection in the step
+#[allow(clippy::large_enum_variant)]
 #[derive(Clone, Copy, Debug)]
 pub(crate) enum DofRt {
     /// Translational invariant `s = row(q)` (m); its midpoint gradient is an exact discrete
     /// gradient.
     Slide(DotRow),
-    /// Rotation about the world axis `n(q)` (unit at the nodes).
-    Turn(LinVec),
+    /// Rotation about the world axis `n(q)` by the angle `atan2(s, c)` (see `turn`).
+    Turn(TurnRt),
 }
 
 /// A joint as the step sees it.

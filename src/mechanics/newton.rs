@@ -14,10 +14,11 @@
 //! `Σᵢ d̄ᵢ × ½ m × d̄ⁱ = m`). Jacobian: `P(q̄)ᵀ K̃ Q + ½ Σᵢ hat(R̃_{dᵢ}) hat(dᵢ)` with
 //! `K̃ = M + ½ Σ μ_k H_k − (h²/2) ∂F/∂q`, multiplier columns `P(q̄)ᵀ ∇g(q̄)`, joint rows
 //! `∇g(q) Q`, `Q = [I 0; 0 −d̂₁; 0 −d̂₂; 0 −d̂₃]`. Exact for inertia, constraints, gravity,
-//! body loads, slide forces/springs/dampers and joint torques through `n̄(q̄)` (checked against
-//! finite differences in the unit test); the angle spring and the rotational dampers use the
-//! leading-order derivative `∂τ/∂θ = −(k/2 + c/h) n̄ᵀ` (the discrete increment `δ` is not
-//! differentiated through the reciprocal basis), which only slows convergence, never the result.
+//! body loads, slide forces/springs/dampers, joint torques through `n̄(q̄)` and angle
+//! springs/dampers (the `atan2` discrete gradient of `turn`; checked against finite differences
+//! in the unit tests, also for a joint nearly at rest); only the spherical joint's damper uses
+//! the leading-order derivative `(c/h) I` of `θᴮ − θᴬ`, which only slows convergence, never the
+//! result.
 //!
 //! Round-off: the velocity recursion `v_{n+1} = vₙ + 2a/h` (`a = Δq − h vₙ`, one fused
 //! rounding) is carried in double-double (`Work::vlo`), so that the energy does not drift by a
@@ -31,9 +32,10 @@ use super::constraint::{DotRow, Nodes};
 pub(crate) use super::increment::{solve, update};
 pub(crate) use super::kernels::{body_nodes, expm1_so3, rotation_increment};
 use super::kernels::{
-    linvec_jac, nn_terms, node_block, outer, project, push_torque, row_q, torque_jac, Sink,
+    linvec_jac, node_block, outer, project, push_torque, row_q, torque_jac, Sink,
 };
 use super::model::{DofRt, Model};
+use super::turn::{row_increment, turn_step};
 pub(crate) use super::work::{Held, Norms, Work};
 use crate::math::Vec3;
 
@@ -225,55 +227,103 @@ pub(crate) fn evaluate(
                             }
                         }
                     }
-                    DofRt::Turn(n) => {
-                        let nbar = n.eval(&qa_bar, &qb_bar);
+                    DofRt::Turn(tr) => {
+                        // actuator: the consistent torque ±act n̄, its work act·δ
+                        let nbar = tr.axis.eval(&qa_bar, &qb_bar);
                         let th_b = read3(&ws.theta, 3 * bb);
                         let th_a = a.map_or(Vec3::zeros(), |a| read3(&ws.theta, 3 * a));
                         let delta = nbar.dot(&(th_b - th_a));
-                        // the angle is needed for springs and, at the end, for the memory
-                        let t0 = ws.ang[turn];
-                        let t1 = if k_s != 0.0 || final_pass {
-                            let raw = super::assemble::turn_angle(model, j, dk, &qa, &qb);
-                            super::assemble::unwrap(t0, raw)
-                        } else {
-                            t0
-                        };
-                        ws.ang1[turn] = t1;
-                        let spring = if delta.abs() > 1e-13 * (1.0 + t0.abs() + t1.abs()) {
-                            -0.5 * k_s * (t1 * t1 - t0 * t0) / delta
-                        } else {
-                            -0.5 * k_s * (t0 + t1)
-                        };
-                        let tau = act + spring - c_d * delta / h;
-                        work += act * delta - c_d * delta * delta / h;
-                        turn += 1;
-                        push_torque(&mut ws.mom, bb, a, &(nbar * (hh * tau)));
-                        if jac {
-                            let ka = n.a;
-                            let kb = n.b;
-                            let jb = linvec_jac(&kb, &d_b);
-                            let ja = linvec_jac(&ka, &d_a);
-                            let kap = hh * (0.5 * k_s + c_d / h);
+                        work += act * delta;
+                        push_torque(&mut ws.mom, bb, a, &(nbar * (hh * act)));
+                        if jac && act != 0.0 {
+                            let jb = linvec_jac(&tr.axis.b, &d_b);
+                            let ja = linvec_jac(&tr.axis.a, &d_a);
                             torque_jac(
                                 &mut x_bb,
                                 &mut x_ba,
                                 &mut x_ab,
                                 &mut x_aa,
-                                hh * tau,
+                                hh * act,
                                 &jb,
                                 &ja,
                                 a.is_some(),
                             );
-                            nn_terms(
-                                &mut x_bb,
-                                &mut x_ba,
-                                &mut x_ab,
-                                &mut x_aa,
-                                kap,
-                                &nbar,
-                                a.is_some(),
-                            );
                         }
+                        // the angle step, and the spring and damper as the discrete gradient
+                        // F = f β (c̄ ∇s(q̄) − s̄ ∇c(q̄)) of `turn`
+                        let t0 = ws.ang[turn];
+                        let loaded = k_s != 0.0 || c_d != 0.0;
+                        if loaded || final_pass {
+                            let dqa = a.map_or(zero, |a| body_nodes(&ws.dq, a));
+                            let dqb = body_nodes(&ws.dq, bb);
+                            let (s0, c0) = (tr.sin.eval(&qa_n, &qb_n), tr.cos.eval(&qa_n, &qb_n));
+                            let ds = row_increment(&tr.sin, &qa_bar, &qb_bar, &dqa, &dqb);
+                            let dc = row_increment(&tr.cos, &qa_bar, &qb_bar, &dqa, &dqb);
+                            let st = turn_step([s0, c0], [ds, dc], t0, k_s, c_d, h);
+                            ws.ang1[turn] = t0 + st.dt;
+                            if loaded {
+                                work -= c_d * st.dt * st.dt / h;
+                                let gs = add_row(
+                                    &tr.sin,
+                                    -hh * st.fs,
+                                    &mut fa,
+                                    &mut fb,
+                                    &mut ws.cbody,
+                                    &mut cab,
+                                );
+                                let gc = add_row(
+                                    &tr.cos,
+                                    -hh * st.fc,
+                                    &mut fa,
+                                    &mut fb,
+                                    &mut ws.cbody,
+                                    &mut cab,
+                                );
+                                if jac {
+                                    // d(−hh f)/dx through (s₁, c₁): Σᵢⱼ −hh ∂fᵢ/∂j₁ P̄ᵀ∇i(q̄) ⊗ ∇j(q)Q
+                                    let mut g1 = [Vec3::zeros(); 8];
+                                    tr.sin.gradient(&qa, &qb, &mut g1);
+                                    let (rs_b, rs_a) =
+                                        (row_q(&g1[4..], &d_b), row_q(&g1[..4], &d_a));
+                                    tr.cos.gradient(&qa, &qb, &mut g1);
+                                    let (rc_b, rc_a) =
+                                        (row_q(&g1[4..], &d_b), row_q(&g1[..4], &d_a));
+                                    let mix = |ws_: f64, wc: f64, rs: &[f64; 6], rc: &[f64; 6]| {
+                                        std::array::from_fn::<f64, 6, _>(|i| {
+                                            -hh * (ws_ * rs[i] + wc * rc[i])
+                                        })
+                                    };
+                                    let j = st.jac;
+                                    let (ms_b, mc_b) = (
+                                        mix(j[0], j[1], &rs_b, &rc_b),
+                                        mix(j[2], j[3], &rs_b, &rc_b),
+                                    );
+                                    let (cs_b, cc_b) =
+                                        (project(&gs[4..], &dbar_b), project(&gc[4..], &dbar_b));
+                                    outer(&mut x_bb, 1.0, &cs_b, &ms_b);
+                                    outer(&mut x_bb, 1.0, &cc_b, &mc_b);
+                                    if a.is_some() {
+                                        let (ms_a, mc_a) = (
+                                            mix(j[0], j[1], &rs_a, &rc_a),
+                                            mix(j[2], j[3], &rs_a, &rc_a),
+                                        );
+                                        let (cs_a, cc_a) = (
+                                            project(&gs[..4], &dbar_a),
+                                            project(&gc[..4], &dbar_a),
+                                        );
+                                        outer(&mut x_ba, 1.0, &cs_b, &ms_a);
+                                        outer(&mut x_ba, 1.0, &cc_b, &mc_a);
+                                        outer(&mut x_ab, 1.0, &cs_a, &ms_b);
+                                        outer(&mut x_ab, 1.0, &cc_a, &mc_b);
+                                        outer(&mut x_aa, 1.0, &cs_a, &ms_a);
+                                        outer(&mut x_aa, 1.0, &cc_a, &mc_a);
+                                    }
+                                }
+                            }
+                        } else {
+                            ws.ang1[turn] = t0;
+                        }
+                        turn += 1;
                     }
                 }
             }
