@@ -16,9 +16,8 @@
 //! `∇g(q) Q`, `Q = [I 0; 0 −d̂₁; 0 −d̂₂; 0 −d̂₃]`. Exact for inertia, constraints, gravity,
 //! body loads, slide forces/springs/dampers, joint torques through `n̄(q̄)` and angle
 //! springs/dampers (the `atan2` discrete gradient of `turn`; checked against finite differences
-//! in the unit tests, also for a joint nearly at rest); only the spherical joint's damper uses
-//! the leading-order derivative `(c/h) I` of `θᴮ − θᴬ`, which only slows convergence, never the
-//! result.
+//! in the unit tests, also for a joint nearly at rest) and the spherical joint's damper (through
+//! the exact `∂θ/∂ε` of `turn::theta_jac`).
 //!
 //! Round-off: the velocity recursion `v_{n+1} = vₙ + 2a/h` (`a = Δq − h vₙ`, one fused
 //! rounding) is carried in double-double (`Work::vlo`), so that the energy does not drift by a
@@ -35,7 +34,7 @@ use super::kernels::{
     linvec_jac, node_block, outer, project, push_torque, row_q, torque_jac, Sink,
 };
 use super::model::{DofRt, Model};
-use super::turn::{row_increment, turn_step};
+use super::turn::{row_increment, theta_jac, turn_step};
 pub(crate) use super::work::{Held, Norms, Work};
 use crate::math::Vec3;
 
@@ -358,13 +357,19 @@ pub(crate) fn evaluate(
                 sph_t += tv;
                 push_torque(&mut ws.mom, bb, a, &(sph_t * hh));
                 if jac && c_d != 0.0 {
+                    // d(hh (c/h)(θᴮ − θᴬ))/dε through the exact ∂θ/∂ε of each body
                     let kap = hh * c_d / h;
+                    let jb = theta_jac(&qb_n, &qb);
+                    let ja = a.map(|_| theta_jac(&qa_n, &qa));
                     for r in 0..3 {
-                        x_bb[(r + 3) * 6 + 3 + r] += kap;
-                        if a.is_some() {
-                            x_aa[(r + 3) * 6 + 3 + r] += kap;
-                            x_ab[(r + 3) * 6 + 3 + r] -= kap;
-                            x_ba[(r + 3) * 6 + 3 + r] -= kap;
+                        for c in 0..3 {
+                            let o = (r + 3) * 6 + 3 + c;
+                            x_bb[o] += kap * jb[(r, c)];
+                            if let Some(ja) = &ja {
+                                x_aa[o] += kap * ja[(r, c)];
+                                x_ab[o] -= kap * jb[(r, c)];
+                                x_ba[o] -= kap * ja[(r, c)];
+                            }
                         }
                     }
                 }

@@ -27,6 +27,7 @@
 
 use super::constraint::DotRow;
 use super::constraint::LinVec;
+use crate::math::{skew, Mat3, Vec3};
 
 /// A rotational joint coordinate as the step sees it.
 #[derive(Clone, Copy, Debug)]
@@ -130,13 +131,42 @@ pub(crate) fn row_increment(
     db: &super::constraint::Nodes,
 ) -> f64 {
     let lin = |v: &LinVec| {
-        let mut out = crate::math::Vec3::zeros();
+        let mut out = Vec3::zeros();
         for n in 0..4 {
             out += da[n] * v.a[n] + db[n] * v.b[n];
         }
         out
     };
     lin(&row.u).dot(&row.w.eval(qa_bar, qb_bar)) + row.u.eval(qa_bar, qb_bar).dot(&lin(&row.w))
+}
+
+/// `∂θ/∂ε` (3 × 3, world frame) of a body's rotation increment `θ = ½ Σᵢ d̄ⁱ × (dᵢ − dᵢₙ)`
+/// for the Newton update `dᵢ ← exp(ε̂) dᵢ` at `ε = 0`, from the start nodes `n` and the
+/// iterate `q`: with `M = ΔD D̄⁻¹` and `P = D D̄⁻¹`, `dM = (I − ½M) ε̂ P` and
+/// `dθ = ½ axial(dM − dMᵀ)`. Equals `I` at `q = n`. Used by the spherical joint's damper
+/// `−(c/h)(θᴮ − θᴬ)`, whose Jacobian is `(c/h) ∂θ/∂ε`.
+#[must_use]
+pub(crate) fn theta_jac(n: &super::constraint::Nodes, q: &super::constraint::Nodes) -> Mat3 {
+    let dbar = [
+        (n[1] + q[1]) * 0.5,
+        (n[2] + q[2]) * 0.5,
+        (n[3] + q[3]) * 0.5,
+    ];
+    let rec = super::kernels::reciprocal(&dbar);
+    // D̄⁻¹ has the reciprocal vectors as rows
+    let inv = Mat3::from_rows(&[rec[0].transpose(), rec[1].transpose(), rec[2].transpose()]);
+    let d = Mat3::from_columns(&[q[1], q[2], q[3]]);
+    let dd = Mat3::from_columns(&[q[1] - n[1], q[2] - n[2], q[3] - n[3]]);
+    let m = dd * inv;
+    let p = d * inv;
+    let left = Mat3::identity() - m * 0.5;
+    let mut out = Mat3::zeros();
+    for k in 0..3 {
+        let dm = left * skew(&Vec3::ith(k, 1.0)) * p;
+        let a = dm - dm.transpose();
+        out.set_column(k, &(Vec3::new(a[(2, 1)], a[(0, 2)], a[(1, 0)]) * 0.5));
+    }
+    out
 }
 
 #[cfg(test)]
