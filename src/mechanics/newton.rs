@@ -34,22 +34,43 @@ use super::kernels::{
     linvec_jac, nn_terms, node_block, outer, project, push_torque, row_q, torque_jac, Sink,
 };
 use super::model::{DofRt, Model};
+use super::sparse_row::{Side, SparseRow};
 pub(crate) use super::work::{Held, Norms, Work};
 use crate::math::Vec3;
 
-/// Evaluates the residual at the iterate `ws.q` (and, if `jac`, the Jacobian) into the sink;
-/// the right-hand side stored is `−r`. Also returns the step's discrete work in `work_out`.
+/// What one call of [`evaluate`] computes.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub(crate) enum Mode {
+    /// Residual (all rows, norms, work, right-hand side `−r`) and the analytic Jacobian: clears
+    /// and fills the tree blocks (`d`, `u`, `l`, `r`) or the dense system (`dense`, `drhs`).
+    Full,
+    /// Everything [`Mode::Full`] computes for the right-hand side, bit for bit, but no
+    /// Jacobian: zeroes and fills only the right-hand sides (`Block::r` of every block, or
+    /// `drhs`); the matrices `d`, `u`, `l` and `dense` are left untouched (they may hold the
+    /// factors of an earlier `Full` iteration, for chord iterations).
+    // the chord iterations that call it are being added next to this
+    #[cfg_attr(not(test), allow(dead_code))]
+    Residual,
+    /// Final pass at the converged iterate: no constraint rows; computes `a`, `θ`, the
+    /// unwrapped angles and the work only.
+    Final,
+}
+
+/// Evaluates the residual at the iterate `ws.q` (and, in [`Mode::Full`], the Jacobian) into
+/// the sink; the right-hand side stored is `−r`. Also returns the step's discrete work in
+/// `work_out`.
 #[allow(clippy::too_many_lines)]
 pub(crate) fn evaluate(
     model: &Model,
     ws: &mut Work,
     held: &Held,
     h: f64,
-    jac: bool,
+    mode: Mode,
     work_out: &mut f64,
 ) -> Norms {
+    let jac = mode == Mode::Full;
     // the final pass (no Jacobian) only needs a, θ, the unwrapped angles and the work
-    let final_pass = !jac;
+    let final_pass = mode == Mode::Final;
     let nb = model.bodies.len();
     let hh = 0.5 * h * h;
     let g = model.def().gravity;
@@ -57,15 +78,24 @@ pub(crate) fn evaluate(
     for k in 0..ws.q.len() {
         ws.qbar[k] = ws.qn[k] + 0.5 * ws.dq[k];
     }
-    if jac {
-        if model.dense {
+    match mode {
+        Mode::Full if model.dense => {
             ws.dense.fill(0.0);
             ws.drhs.fill(0.0);
-        } else {
+        }
+        Mode::Full => {
             for b in &mut ws.blocks {
                 b.clear();
             }
         }
+        // the matrices may hold factors: only the right-hand sides are rebuilt
+        Mode::Residual if model.dense => ws.drhs.fill(0.0),
+        Mode::Residual => {
+            for b in &mut ws.blocks {
+                b.r.fill(0.0);
+            }
+        }
+        Mode::Final => {}
     }
     // body inertia and applied forces, node form
     for b in 0..nb {
@@ -137,38 +167,37 @@ pub(crate) fn evaluate(
             let mut x_ba = [0.0; 36];
             let mut x_aa = [0.0; 36];
             let mut x_bb = [0.0; 36];
-            let mut grad = [Vec3::zeros(); 8];
-            let mut add_row = |row: &DotRow,
-                               coef: f64,
-                               fa: &mut [Vec3; 4],
-                               fb: &mut [Vec3; 4],
-                               cb: &mut [[f64; 16]],
-                               cab: &mut [f64; 16]| {
-                row.gradient(&qa_bar, &qb_bar, &mut grad);
-                for k in 0..4 {
-                    fa[k] += grad[k] * coef;
-                    fb[k] += grad[4 + k] * coef;
-                }
+            // coef ∇g(q̄) into the node forces and (Full) ½ coef S into the node couplings;
+            // returns ∇g(q̄) over the eight nodes (also used by the slide dofs)
+            let add_row = |row: &DotRow,
+                           coef: f64,
+                           fa: &mut [Vec3; 4],
+                           fb: &mut [Vec3; 4],
+                           cb: &mut [[f64; 16]],
+                           cab: &mut [f64; 16]| {
+                let sr = SparseRow::new(row, a.is_some());
+                let (ub, wb) = sr.uw(&qa_bar, &qb_bar);
+                let grad = sr.grad(&ub, &wb);
+                sr.add_forces(&grad, coef, fa, fb);
                 if jac {
-                    // ½ coef S with S = αβᵀ + βαᵀ, as three branch-free 4 × 4 node blocks
-                    let (al, be) = (row.u.coeffs(), row.w.coeffs());
-                    let hc = 0.5 * coef;
-                    hess_block(&mut cb[bb], &al, &be, hc, 4, 4);
-                    if let Some(a) = a {
-                        hess_block(&mut cb[a], &al, &be, hc, 0, 0);
-                        hess_block(cab, &al, &be, hc, 0, 4);
-                    }
+                    sr.add_hessian(0.5 * coef, cb, a, bb, cab);
                 }
-                grad
+                sr.expand(&grad)
             };
             let mut fa = [Vec3::zeros(); 4];
             let mut fb = [Vec3::zeros(); 4];
-            for (k, row) in jt.rows.iter().enumerate().filter(|_| !final_pass) {
+            for (k, sr) in jt.sparse.iter().enumerate().filter(|_| !final_pass) {
                 let mu = ws.mu[jt.row0 + k];
-                let grad = add_row(row, mu, &mut fa, &mut fb, &mut ws.cbody, &mut cab);
+                // compact ∇g(q̄) over the row's non-zero nodes (see `SparseRow`)
+                let (ub, wb) = sr.uw(&qa_bar, &qb_bar);
+                let grad = sr.grad(&ub, &wb);
+                sr.add_forces(&grad, mu, &mut fa, &mut fb);
+                if jac {
+                    sr.add_hessian(0.5 * mu, &mut ws.cbody, a, bb, &mut cab);
+                }
                 // u, w at the iterate once: the value and the gradient ∇g(q)
-                let (u1, w1) = (row.u.eval(&qa, &qb), row.w.eval(&qa, &qb));
-                let gv = u1.dot(&w1) - row.offset;
+                let (u1, w1) = sr.uw(&qa, &qb);
+                let gv = sr.value(&u1, &w1);
                 res = res.max(gv.abs() * gscale);
                 if model.dense {
                     ws.drhs[6 * nb + jt.row0 + k] = -gv;
@@ -176,17 +205,20 @@ pub(crate) fn evaluate(
                     sink.blocks[bb].r[6 + k] = -gv;
                 }
                 if jac {
-                    // multiplier columns P̄ᵀ∇g(q̄)
-                    sink.body_mu(bb, j, k, &project(&grad[4..], &dbar_b));
-                    if let Some(a) = a {
-                        sink.body_mu(a, j, k, &project(&grad[..4], &dbar_a));
+                    // multiplier columns P̄ᵀ∇g(q̄) (skipped where the row is zero)
+                    if let Some(col) = sr.project(&grad, Side::B, &dbar_b) {
+                        sink.body_mu(bb, j, k, &col);
+                    }
+                    if let (Some(a), Some(col)) = (a, sr.project(&grad, Side::A, &dbar_a)) {
+                        sink.body_mu(a, j, k, &col);
                     }
                     // joint rows ∇g(q) Q
-                    let (al, be) = (row.u.coeffs(), row.w.coeffs());
-                    let g1: [Vec3; 8] = std::array::from_fn(|n| w1 * al[n] + u1 * be[n]);
-                    sink.mu_body(j, k, bb, &row_q(&g1[4..], &d_b));
-                    if let Some(a) = a {
-                        sink.mu_body(j, k, a, &row_q(&g1[..4], &d_a));
+                    let g1 = sr.grad(&u1, &w1);
+                    if let Some(row) = sr.project(&g1, Side::B, &d_b) {
+                        sink.mu_body(j, k, bb, &row);
+                    }
+                    if let (Some(a), Some(row)) = (a, sr.project(&g1, Side::A, &d_a)) {
+                        sink.mu_body(j, k, a, &row);
                     }
                 }
             }
@@ -359,21 +391,6 @@ pub(crate) fn evaluate(
     res = res.max(project_bodies(model, ws, held, hh, jac, nd, &mut work));
     *work_out = work;
     Norms { res }
-}
-
-/// `c[4n + m] += (αₙ hc) β_m + (βₙ hc) α_m` for the node rows `r0..r0 + 4` and columns
-/// `c0..c0 + 4` of the 8 × 8 row Hessian `S = αβᵀ + βαᵀ` (see `DotRow::hessian`).
-#[inline]
-fn hess_block(c: &mut [f64; 16], al: &[f64; 8], be: &[f64; 8], hc: f64, r0: usize, c0: usize) {
-    for n in 0..4 {
-        let (an, bn) = (al[r0 + n] * hc, be[r0 + n] * hc);
-        if an == 0.0 && bn == 0.0 {
-            continue;
-        }
-        for m in 0..4 {
-            c[4 * n + m] += an * be[c0 + m] + bn * al[c0 + m];
-        }
-    }
 }
 
 /// Value of the actuator input driving dof `dk` of joint `j` (inputs start at `first`).
