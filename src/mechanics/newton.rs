@@ -117,15 +117,17 @@ pub(crate) fn evaluate(
         }
         let th = rotation_increment(&qn, &q);
         write3(&mut ws.theta, 3 * b, &th);
-        let c = &mut ws.cbody[b];
-        c.fill(0.0);
-        c[0] = br.mass;
-        for i in 0..3 {
-            for j in 0..3 {
-                c[4 * (i + 1) + j + 1] = br.e[(i, j)];
+        if jac {
+            let c = &mut ws.cbody[b];
+            c.fill(0.0);
+            c[0] = br.mass;
+            for i in 0..3 {
+                for j in 0..3 {
+                    c[4 * (i + 1) + j + 1] = br.e[(i, j)];
+                }
             }
+            ws.xbody[b].fill(0.0);
         }
-        ws.xbody[b].fill(0.0);
         write3(&mut ws.mom, 3 * b, &Vec3::zeros());
     }
     for &(b, at) in &model.body_forces {
@@ -148,6 +150,15 @@ pub(crate) fn evaluate(
             dense: &mut sink_dense,
             nd,
         };
+        // off-diagonal node coupling C_AB and extra blocks of one joint (Jacobian only, zeroed
+        // per joint in Full mode)
+        let mut cab = [0.0; 16];
+        let mut x_ab = [0.0; 36];
+        let mut x_ba = [0.0; 36];
+        let mut x_aa = [0.0; 36];
+        let mut x_bb = [0.0; 36];
+        // scratch of the compact gradients at q̄ and q (entries beyond a row's nodes unused)
+        let (mut buf, mut buf1) = ([Vec3::zeros(); 8], [Vec3::zeros(); 8]);
         for (j, jt) in model.joints.iter().enumerate() {
             let a = jt.parent;
             let bb = jt.child;
@@ -155,18 +166,16 @@ pub(crate) fn evaluate(
             let qb_bar = body_nodes(&ws.qbar, bb);
             let qa = a.map_or(zero, |a| body_nodes(&ws.q, a));
             let qb = body_nodes(&ws.q, bb);
-            let qa_n = a.map_or(zero, |a| body_nodes(&ws.qn, a));
-            let qb_n = body_nodes(&ws.qn, bb);
             let dbar_a = [qa_bar[1], qa_bar[2], qa_bar[3]];
             let dbar_b = [qb_bar[1], qb_bar[2], qb_bar[3]];
             let d_a = [qa[1], qa[2], qa[3]];
             let d_b = [qb[1], qb[2], qb[3]];
-            // off-diagonal node coupling C_AB and extra blocks for this joint
-            let mut cab = [0.0; 16];
-            let mut x_ab = [0.0; 36];
-            let mut x_ba = [0.0; 36];
-            let mut x_aa = [0.0; 36];
-            let mut x_bb = [0.0; 36];
+            if jac {
+                cab.fill(0.0);
+                for x in [&mut x_ab, &mut x_ba, &mut x_aa, &mut x_bb] {
+                    x.fill(0.0);
+                }
+            }
             // coef ∇g(q̄) into the node forces and (Full) ½ coef S into the node couplings;
             // returns ∇g(q̄) over the eight nodes (also used by the slide dofs)
             let add_row = |row: &DotRow,
@@ -176,22 +185,21 @@ pub(crate) fn evaluate(
                            cb: &mut [[f64; 16]],
                            cab: &mut [f64; 16]| {
                 let sr = SparseRow::new(row, a.is_some());
-                let (ub, wb) = sr.uw(&qa_bar, &qb_bar);
-                let grad = sr.grad(&ub, &wb);
-                sr.add_forces(&grad, coef, fa, fb);
+                let mut buf = [Vec3::zeros(); 8];
+                let grad = sr.grad_at(&qa_bar, &qb_bar, &mut buf);
+                sr.add_forces(grad, coef, fa, fb);
                 if jac {
                     sr.add_hessian(0.5 * coef, cb, a, bb, cab);
                 }
-                sr.expand(&grad)
+                sr.expand(grad)
             };
             let mut fa = [Vec3::zeros(); 4];
             let mut fb = [Vec3::zeros(); 4];
             for (k, sr) in jt.sparse.iter().enumerate().filter(|_| !final_pass) {
                 let mu = ws.mu[jt.row0 + k];
                 // compact ∇g(q̄) over the row's non-zero nodes (see `SparseRow`)
-                let (ub, wb) = sr.uw(&qa_bar, &qb_bar);
-                let grad = sr.grad(&ub, &wb);
-                sr.add_forces(&grad, mu, &mut fa, &mut fb);
+                let grad = sr.grad_at(&qa_bar, &qb_bar, &mut buf);
+                sr.add_forces(grad, mu, &mut fa, &mut fb);
                 if jac {
                     sr.add_hessian(0.5 * mu, &mut ws.cbody, a, bb, &mut cab);
                 }
@@ -206,18 +214,18 @@ pub(crate) fn evaluate(
                 }
                 if jac {
                     // multiplier columns P̄ᵀ∇g(q̄) (skipped where the row is zero)
-                    if let Some(col) = sr.project(&grad, Side::B, &dbar_b) {
+                    if let Some(col) = sr.project(grad, Side::B, &dbar_b) {
                         sink.body_mu(bb, j, k, &col);
                     }
-                    if let (Some(a), Some(col)) = (a, sr.project(&grad, Side::A, &dbar_a)) {
+                    if let (Some(a), Some(col)) = (a, sr.project(grad, Side::A, &dbar_a)) {
                         sink.body_mu(a, j, k, &col);
                     }
                     // joint rows ∇g(q) Q
-                    let g1 = sr.grad(&u1, &w1);
-                    if let Some(row) = sr.project(&g1, Side::B, &d_b) {
+                    let g1 = sr.grad(&u1, &w1, &mut buf1);
+                    if let Some(row) = sr.project(g1, Side::B, &d_b) {
                         sink.mu_body(j, k, bb, &row);
                     }
-                    if let (Some(a), Some(row)) = (a, sr.project(&g1, Side::A, &d_a)) {
+                    if let (Some(a), Some(row)) = (a, sr.project(g1, Side::A, &d_a)) {
                         sink.mu_body(j, k, a, &row);
                     }
                 }
@@ -233,6 +241,8 @@ pub(crate) fn evaluate(
                     .map_or(0.0, |i| actuator_input(model, j, dk, held.inputs, i));
                 match dof {
                     DofRt::Slide(row) => {
+                        let qa_n = a.map_or(zero, |a| body_nodes(&ws.qn, a));
+                        let qb_n = body_nodes(&ws.qn, bb);
                         let s0 = row.eval(&qa_n, &qb_n);
                         let s1 = row.eval(&qa, &qb);
                         let ds = s1 - s0;
@@ -351,24 +361,26 @@ pub(crate) fn evaluate(
                     }
                 }
             }
-            // node forces of this joint into R̃
-            if let Some(a) = a {
-                for k in 0..4 {
-                    let v = read3(&ws.rn, 12 * a + 3 * k) + fa[k];
-                    write3(&mut ws.rn, 12 * a + 3 * k, &v);
+            // node forces of this joint into R̃ (the final pass does not use R̃)
+            if !final_pass {
+                if let Some(a) = a {
+                    for k in 0..4 {
+                        let v = read3(&ws.rn, 12 * a + 3 * k) + fa[k];
+                        write3(&mut ws.rn, 12 * a + 3 * k, &v);
+                    }
                 }
-            }
-            for k in 0..4 {
-                let v = read3(&ws.rn, 12 * bb + 3 * k) + fb[k];
-                write3(&mut ws.rn, 12 * bb + 3 * k, &v);
+                for k in 0..4 {
+                    let v = read3(&ws.rn, 12 * bb + 3 * k) + fb[k];
+                    write3(&mut ws.rn, 12 * bb + 3 * k, &v);
+                }
             }
             if jac {
-                for r in 0..36 {
-                    ws.xbody[bb][r] += x_bb[r];
+                for (x, y) in ws.xbody[bb].iter_mut().zip(&x_bb) {
+                    *x += y;
                 }
                 if let Some(a) = a {
-                    for r in 0..36 {
-                        ws.xbody[a][r] += x_aa[r];
+                    for (x, y) in ws.xbody[a].iter_mut().zip(&x_aa) {
+                        *x += y;
                     }
                     let mut blk = x_ab;
                     node_block(&cab, &dbar_a, &d_b, &mut blk);
@@ -388,7 +400,7 @@ pub(crate) fn evaluate(
     }
     ws.dense = sink_dense;
     ws.blocks = sink_blocks;
-    res = res.max(project_bodies(model, ws, held, hh, jac, nd, &mut work));
+    res = res.max(project_bodies(model, ws, held, hh, mode, nd, &mut work));
     *work_out = work;
     Norms { res }
 }

@@ -50,7 +50,7 @@ impl SparseVec {
     }
 
     /// Value `c + Σₖ (aₖ qᴬₖ + bₖ qᴮₖ)` (same association as [`LinVec::eval`]), world frame.
-    #[inline]
+    #[inline(always)]
     fn eval(&self, qa: &Nodes, qb: &Nodes, has_a: bool) -> Vec3 {
         let mut v = self.c;
         if has_a {
@@ -102,6 +102,10 @@ pub(crate) struct SparseRow {
     na: usize,
     /// Both factors depend on the nodes (non-zero Hessian `αβᵀ + βαᵀ`).
     quad: bool,
+    /// Compact gradient `w₀ αₙ + u₀ βₙ` of a linear row (`!quad`: one factor is the constant
+    /// part of its [`LinVec`], the other's coefficients are zero), which does not depend on
+    /// the configuration.
+    gc: [Vec3; 2 * NODES],
 }
 
 impl SparseRow {
@@ -130,11 +134,16 @@ impl SparseRow {
         }
         let any = |c: &[f64; 2 * NODES]| c[..s.n].iter().any(|x| *x != 0.0);
         s.quad = any(&s.al) && any(&s.be);
+        if !s.quad {
+            for i in 0..s.n {
+                s.gc[i] = row.w.c * s.al[i] + row.u.c * s.be[i];
+            }
+        }
         s
     }
 
     /// The factors `(u, w)` at the nodes `qa`, `qb` (world frame).
-    #[inline]
+    #[inline(always)]
     pub(crate) fn uw(&self, qa: &Nodes, qb: &Nodes) -> (Vec3, Vec3) {
         (
             self.u.eval(qa, qb, self.has_a),
@@ -148,18 +157,42 @@ impl SparseRow {
         u.dot(w) - self.offset
     }
 
-    /// Compact gradient `w αₙ + u βₙ` from the factors at the evaluation point.
-    #[inline]
-    pub(crate) fn grad(&self, u: &Vec3, w: &Vec3) -> [Vec3; 2 * NODES] {
-        let mut out = [Vec3::zeros(); 2 * NODES];
-        for i in 0..self.n {
-            out[i] = w * self.al[i] + u * self.be[i];
+    /// Compact gradient `w αₙ + u βₙ` from the factors `u`, `w` at the evaluation point,
+    /// written to `buf` (entries `n..` untouched); a linear row returns its constant gradient.
+    #[inline(always)]
+    pub(crate) fn grad<'a>(
+        &'a self,
+        u: &Vec3,
+        w: &Vec3,
+        buf: &'a mut [Vec3; 2 * NODES],
+    ) -> &'a [Vec3; 2 * NODES] {
+        if !self.quad {
+            return &self.gc;
         }
-        out
+        for i in 0..self.n {
+            buf[i] = w * self.al[i] + u * self.be[i];
+        }
+        buf
+    }
+
+    /// Compact gradient at the nodes `qa`, `qb` into `buf` (see [`SparseRow::grad`]); a
+    /// linear row evaluates nothing.
+    #[inline(always)]
+    pub(crate) fn grad_at<'a>(
+        &'a self,
+        qa: &Nodes,
+        qb: &Nodes,
+        buf: &'a mut [Vec3; 2 * NODES],
+    ) -> &'a [Vec3; 2 * NODES] {
+        if !self.quad {
+            return &self.gc;
+        }
+        let (u, w) = self.uw(qa, qb);
+        self.grad(&u, &w, buf)
     }
 
     /// `fa`, `fb` (node forces of A and B) `+= coef · g`.
-    #[inline]
+    #[inline(always)]
     pub(crate) fn add_forces(
         &self,
         g: &[Vec3; 2 * NODES],
@@ -176,8 +209,9 @@ impl SparseRow {
     }
 
     /// Adds `hc · S` (`S = αβᵀ + βαᵀ`, see [`DotRow::hessian`]) to the 4 × 4 node couplings:
-    /// the A–A block into `cb[a]`, B–B into `cb[b]` and A–B (A rows) into `cab`.
-    #[inline]
+    /// the A–A block into `cb[a]`, B–B into `cb[b]` and A–B (A rows) into `cab`. Nothing for
+    /// a linear row.
+    #[inline(always)]
     pub(crate) fn add_hessian(
         &self,
         hc: f64,
@@ -186,9 +220,20 @@ impl SparseRow {
         b: usize,
         cab: &mut [f64; 16],
     ) {
-        if !self.quad {
-            return;
+        if self.quad {
+            self.add_hessian_quad(hc, cb, a, b, cab);
         }
+    }
+
+    /// [`SparseRow::add_hessian`] of a quadratic row.
+    fn add_hessian_quad(
+        &self,
+        hc: f64,
+        cb: &mut [[f64; 16]],
+        a: Option<usize>,
+        b: usize,
+        cab: &mut [f64; 16],
+    ) {
         for i in 0..self.n {
             let (an, bn) = (self.al[i] * hc, self.be[i] * hc);
             if an == 0.0 && bn == 0.0 {
@@ -211,7 +256,7 @@ impl SparseRow {
     /// `[f_φ ; Σᵢ dᵢ × f_{dᵢ}]` of the compact gradient `g` on one side (`P̄ᵀ∇g` with the
     /// midpoint directors, `∇g Q` with the iterate's); `None` when the row does not touch
     /// that body (the result would be zero).
-    #[inline]
+    #[inline(always)]
     pub(crate) fn project(
         &self,
         g: &[Vec3; 2 * NODES],

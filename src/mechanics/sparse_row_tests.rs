@@ -67,7 +67,10 @@ fn sparse_matches_dense() {
             assert_eq!(u, row.u.eval(&qa, &qb));
             assert_eq!(w, row.w.eval(&qa, &qb));
             assert_eq!(sr.value(&u, &w), row.eval(&qa, &qb));
-            let g = sr.grad(&u, &w);
+            let mut buf = [Vec3::zeros(); 8];
+            let g = *sr.grad(&u, &w, &mut buf);
+            let mut buf2 = [Vec3::zeros(); 8];
+            assert_eq!(sr.expand(sr.grad_at(&qa, &qb, &mut buf2)), sr.expand(&g));
             let mut gd = [Vec3::zeros(); 8];
             row.gradient(&qa, &qb, &mut gd);
             assert_eq!(sr.expand(&g), gd);
