@@ -82,8 +82,9 @@ pub(crate) fn project_bodies(
         if jac {
             let q = body_nodes(&ws.q, b);
             let d = [q[1], q[2], q[3]];
-            let mut blk = ws.xbody[b];
-            node_block(&ws.cbody[b], &dbar, &d, &mut blk);
+            // the extra terms complete to the diagonal block in place (zeroed every Full pass)
+            let blk = &mut ws.xbody[b];
+            node_block(&ws.cbody[b], &dbar, &d, blk);
             // derivative of the projection: ½ Σ hat(R̃_{dᵢ}) hat(dᵢ)
             // (hat(r) hat(d) = d rᵀ − (r·d) I)
             let mut pm = Mat3::zeros();
@@ -104,7 +105,7 @@ pub(crate) fn project_bodies(
                 dense: &mut ws.dense,
                 nd,
             };
-            sink.body_body(b, b, &blk);
+            sink.body_body(b, b, blk);
         }
     }
     res

@@ -382,18 +382,17 @@ pub(crate) fn evaluate(
                     for (x, y) in ws.xbody[a].iter_mut().zip(&x_aa) {
                         *x += y;
                     }
-                    let mut blk = x_ab;
-                    node_block(&cab, &dbar_a, &d_b, &mut blk);
-                    sink.body_body(a, bb, &blk);
+                    // the extra blocks complete in place (zeroed again for the next joint)
+                    node_block(&cab, &dbar_a, &d_b, &mut x_ab);
+                    sink.body_body(a, bb, &x_ab);
                     let mut cba = [0.0; 16];
                     for n in 0..4 {
                         for m in 0..4 {
                             cba[4 * n + m] = cab[4 * m + n];
                         }
                     }
-                    let mut blk = x_ba;
-                    node_block(&cba, &dbar_b, &d_a, &mut blk);
-                    sink.body_body(bb, a, &blk);
+                    node_block(&cba, &dbar_b, &d_a, &mut x_ba);
+                    sink.body_body(bb, a, &x_ba);
                 }
             }
         }
