@@ -83,18 +83,10 @@ pub(crate) fn evaluate(
             ws.dense.fill(0.0);
             ws.drhs.fill(0.0);
         }
-        Mode::Full => {
-            for b in &mut ws.blocks {
-                b.clear();
-            }
-        }
+        Mode::Full => ws.blocks.iter_mut().for_each(|b| b.clear()),
         // the matrices may hold factors: only the right-hand sides are rebuilt
         Mode::Residual if model.dense => ws.drhs.fill(0.0),
-        Mode::Residual => {
-            for b in &mut ws.blocks {
-                b.r.fill(0.0);
-            }
-        }
+        Mode::Residual => ws.blocks.iter_mut().for_each(|b| b.r.fill(0.0)),
         Mode::Final => {}
     }
     // body inertia and applied forces, node form
