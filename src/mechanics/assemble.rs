@@ -13,6 +13,7 @@ use super::def::JointType;
 use super::error::ModelError;
 use super::joint::{Dof, JointGeom};
 use super::model::{DofRt, JointRt, Model};
+use super::sparse_row::SparseRow;
 use super::turn::TurnRt;
 use crate::math::{matrix_to_quat, quat_to_matrix, Vec3};
 
@@ -108,10 +109,15 @@ pub(crate) fn build(model: &mut Model, joint_input: &[Option<usize>]) -> Result<
         }
         let nturn = dofs.iter().filter(|d| matches!(d, DofRt::Turn(_))).count();
         let nrow = rows.len();
+        let sparse = rows
+            .iter()
+            .map(|r| SparseRow::new(r, g.parent.is_some()))
+            .collect();
         model.joints.push(JointRt {
             parent: g.parent,
             child: g.child,
             rows,
+            sparse,
             dropped,
             row0,
             dofs,

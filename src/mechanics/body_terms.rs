@@ -7,22 +7,35 @@
 use super::assemble::read3;
 use super::kernels::{body_nodes, node_block, project, Sink};
 use super::model::Model;
+use super::newton::Mode;
 use super::work::{Held, Work};
 use crate::math::{Mat3, Vec3};
 
 /// Projects the node residual `ws.rn` of every body onto its six rows (right-hand side `−r`
 /// into the tree blocks or the dense system), adds the body torques (their work into `work`)
-/// and, if `jac`, the diagonal Jacobian blocks. Returns the largest scaled body residual.
+/// and, in [`Mode::Full`], the diagonal Jacobian blocks. Returns the largest scaled body
+/// residual. [`Mode::Final`] only adds the work of the body torques (returns 0).
 #[allow(clippy::too_many_arguments)]
 pub(crate) fn project_bodies(
     model: &Model,
     ws: &mut Work,
     held: &Held,
     hh: f64,
-    jac: bool,
+    mode: Mode,
     nd: usize,
     work: &mut f64,
 ) -> f64 {
+    if mode == Mode::Final {
+        // same summation order as below
+        for b in 0..model.bodies.len() {
+            for &(tb, at) in model.body_torques.iter().filter(|t| t.0 == b) {
+                let m = Vec3::new(held.inputs[at], held.inputs[at + 1], held.inputs[at + 2]);
+                *work += m.dot(&read3(&ws.theta, 3 * tb));
+            }
+        }
+        return 0.0;
+    }
+    let jac = mode == Mode::Full;
     let mut res = 0.0_f64;
     for b in 0..model.bodies.len() {
         let br = &model.bodies[b];
@@ -69,8 +82,9 @@ pub(crate) fn project_bodies(
         if jac {
             let q = body_nodes(&ws.q, b);
             let d = [q[1], q[2], q[3]];
-            let mut blk = ws.xbody[b];
-            node_block(&ws.cbody[b], &dbar, &d, &mut blk);
+            // the extra terms complete to the diagonal block in place (zeroed every Full pass)
+            let blk = &mut ws.xbody[b];
+            node_block(&ws.cbody[b], &dbar, &d, blk);
             // derivative of the projection: ½ Σ hat(R̃_{dᵢ}) hat(dᵢ)
             // (hat(r) hat(d) = d rᵀ − (r·d) I)
             let mut pm = Mat3::zeros();
@@ -91,7 +105,7 @@ pub(crate) fn project_bodies(
                 dense: &mut ws.dense,
                 nd,
             };
-            sink.body_body(b, b, &blk);
+            sink.body_body(b, b, blk);
         }
     }
     res

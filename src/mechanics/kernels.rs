@@ -65,17 +65,27 @@ pub(crate) fn node_block(c: &[f64; 16], dbar: &[Vec3; 3], d: &[Vec3; 3], out: &m
             }
         }
     }
-    let pt = skew(&p);
-    let mp = skew(&sv);
     for r in 0..3 {
         out[r * 6 + r] += c[0];
         out[(r + 3) * 6 + 3 + r] += tr;
         for s in 0..3 {
-            out[r * 6 + 3 + s] -= pt[(r, s)];
-            out[(r + 3) * 6 + s] += mp[(r, s)];
             out[(r + 3) * 6 + 3 + s] += mt[r][s];
         }
     }
+    // −hat(p) into rows φ, columns θ and hat(s) into rows θ, columns φ, written out
+    // (hat(v) = [0 −v_z v_y; v_z 0 −v_x; −v_y v_x 0], its zero diagonal left out)
+    out[4] += p.z;
+    out[5] -= p.y;
+    out[9] -= p.z;
+    out[11] += p.x;
+    out[15] += p.y;
+    out[16] -= p.x;
+    out[19] -= sv.z;
+    out[20] += sv.y;
+    out[24] += sv.z;
+    out[26] -= sv.x;
+    out[30] -= sv.y;
+    out[31] += sv.x;
 }
 
 /// `P̄ᵀ` applied to one body's node vectors: `[f_φ ; Σ d̄ᵢ × f_{dᵢ}]`.

@@ -29,6 +29,7 @@ mod newton;
 mod outputs;
 mod projection;
 mod solver;
+mod sparse_row;
 mod state;
 mod step;
 mod turn;

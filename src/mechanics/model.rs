@@ -8,6 +8,7 @@ use super::constraint::{DotRow, LinVec};
 use super::def::{ModelDef, SolverSettings};
 use super::error::ModelError;
 use super::joint::JointGeom;
+use super::sparse_row::SparseRow;
 pub(crate) use super::turn::TurnRt;
 use crate::math::{Mat3, Vec3};
 
@@ -79,6 +80,8 @@ pub(crate) struct JointRt {
     pub child: usize,
     /// Rows kept in the Newton solve.
     pub rows: Vec<DotRow>,
+    /// `rows` compiled to their non-zero nodes (same order), for the Newton evaluation.
+    pub sparse: Vec<SparseRow>,
     /// Rows dropped as redundant (still reported in the residual).
     pub dropped: Vec<DotRow>,
     /// Offset of this joint's first active row in the global multiplier vector.

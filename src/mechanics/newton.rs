@@ -34,23 +34,44 @@ use super::kernels::{
     linvec_jac, node_block, outer, project, push_torque, row_q, torque_jac, Sink,
 };
 use super::model::{DofRt, Model};
+use super::sparse_row::{Side, SparseRow};
 use super::turn::{row_increment, theta_jac, turn_step};
 pub(crate) use super::work::{Held, Norms, Work};
 use crate::math::Vec3;
 
-/// Evaluates the residual at the iterate `ws.q` (and, if `jac`, the Jacobian) into the sink;
-/// the right-hand side stored is `−r`. Also returns the step's discrete work in `work_out`.
+/// What one call of [`evaluate`] computes.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub(crate) enum Mode {
+    /// Residual (all rows, norms, work, right-hand side `−r`) and the analytic Jacobian: clears
+    /// and fills the tree blocks (`d`, `u`, `l`, `r`) or the dense system (`dense`, `drhs`).
+    Full,
+    /// Everything [`Mode::Full`] computes for the right-hand side, bit for bit, but no
+    /// Jacobian: zeroes and fills only the right-hand sides (`Block::r` of every block, or
+    /// `drhs`); the matrices `d`, `u`, `l` and `dense` are left untouched (they may hold the
+    /// factors of an earlier `Full` iteration, for chord iterations).
+    // the chord iterations that call it are being added next to this
+    #[cfg_attr(not(test), allow(dead_code))]
+    Residual,
+    /// Final pass at the converged iterate: no constraint rows; computes `a`, `θ`, the
+    /// unwrapped angles and the work only.
+    Final,
+}
+
+/// Evaluates the residual at the iterate `ws.q` (and, in [`Mode::Full`], the Jacobian) into
+/// the sink; the right-hand side stored is `−r`. Also returns the step's discrete work in
+/// `work_out`.
 #[allow(clippy::too_many_lines)]
 pub(crate) fn evaluate(
     model: &Model,
     ws: &mut Work,
     held: &Held,
     h: f64,
-    jac: bool,
+    mode: Mode,
     work_out: &mut f64,
 ) -> Norms {
+    let jac = mode == Mode::Full;
     // the final pass (no Jacobian) only needs a, θ, the unwrapped angles and the work
-    let final_pass = !jac;
+    let final_pass = mode == Mode::Final;
     let nb = model.bodies.len();
     let hh = 0.5 * h * h;
     let g = model.def().gravity;
@@ -58,15 +79,16 @@ pub(crate) fn evaluate(
     for k in 0..ws.q.len() {
         ws.qbar[k] = ws.qn[k] + 0.5 * ws.dq[k];
     }
-    if jac {
-        if model.dense {
+    match mode {
+        Mode::Full if model.dense => {
             ws.dense.fill(0.0);
             ws.drhs.fill(0.0);
-        } else {
-            for b in &mut ws.blocks {
-                b.clear();
-            }
         }
+        Mode::Full => ws.blocks.iter_mut().for_each(|b| b.clear()),
+        // the matrices may hold factors: only the right-hand sides are rebuilt
+        Mode::Residual if model.dense => ws.drhs.fill(0.0),
+        Mode::Residual => ws.blocks.iter_mut().for_each(|b| b.r.fill(0.0)),
+        Mode::Final => {}
     }
     // body inertia and applied forces, node form
     for b in 0..nb {
@@ -88,15 +110,17 @@ pub(crate) fn evaluate(
         }
         let th = rotation_increment(&qn, &q);
         write3(&mut ws.theta, 3 * b, &th);
-        let c = &mut ws.cbody[b];
-        c.fill(0.0);
-        c[0] = br.mass;
-        for i in 0..3 {
-            for j in 0..3 {
-                c[4 * (i + 1) + j + 1] = br.e[(i, j)];
+        if jac {
+            let c = &mut ws.cbody[b];
+            c.fill(0.0);
+            c[0] = br.mass;
+            for i in 0..3 {
+                for j in 0..3 {
+                    c[4 * (i + 1) + j + 1] = br.e[(i, j)];
+                }
             }
+            ws.xbody[b].fill(0.0);
         }
-        ws.xbody[b].fill(0.0);
         write3(&mut ws.mom, 3 * b, &Vec3::zeros());
     }
     for &(b, at) in &model.body_forces {
@@ -119,6 +143,15 @@ pub(crate) fn evaluate(
             dense: &mut sink_dense,
             nd,
         };
+        // off-diagonal node coupling C_AB and extra blocks of one joint (Jacobian only, zeroed
+        // per joint in Full mode)
+        let mut cab = [0.0; 16];
+        let mut x_ab = [0.0; 36];
+        let mut x_ba = [0.0; 36];
+        let mut x_aa = [0.0; 36];
+        let mut x_bb = [0.0; 36];
+        // scratch of the compact gradients at q̄ and q (entries beyond a row's nodes unused)
+        let (mut buf, mut buf1) = ([Vec3::zeros(); 8], [Vec3::zeros(); 8]);
         for (j, jt) in model.joints.iter().enumerate() {
             let a = jt.parent;
             let bb = jt.child;
@@ -126,50 +159,46 @@ pub(crate) fn evaluate(
             let qb_bar = body_nodes(&ws.qbar, bb);
             let qa = a.map_or(zero, |a| body_nodes(&ws.q, a));
             let qb = body_nodes(&ws.q, bb);
-            let qa_n = a.map_or(zero, |a| body_nodes(&ws.qn, a));
-            let qb_n = body_nodes(&ws.qn, bb);
             let dbar_a = [qa_bar[1], qa_bar[2], qa_bar[3]];
             let dbar_b = [qb_bar[1], qb_bar[2], qb_bar[3]];
             let d_a = [qa[1], qa[2], qa[3]];
             let d_b = [qb[1], qb[2], qb[3]];
-            // off-diagonal node coupling C_AB and extra blocks for this joint
-            let mut cab = [0.0; 16];
-            let mut x_ab = [0.0; 36];
-            let mut x_ba = [0.0; 36];
-            let mut x_aa = [0.0; 36];
-            let mut x_bb = [0.0; 36];
-            let mut grad = [Vec3::zeros(); 8];
-            let mut add_row = |row: &DotRow,
-                               coef: f64,
-                               fa: &mut [Vec3; 4],
-                               fb: &mut [Vec3; 4],
-                               cb: &mut [[f64; 16]],
-                               cab: &mut [f64; 16]| {
-                row.gradient(&qa_bar, &qb_bar, &mut grad);
-                for k in 0..4 {
-                    fa[k] += grad[k] * coef;
-                    fb[k] += grad[4 + k] * coef;
+            if jac {
+                cab.fill(0.0);
+                for x in [&mut x_ab, &mut x_ba, &mut x_aa, &mut x_bb] {
+                    x.fill(0.0);
                 }
+            }
+            // coef ∇g(q̄) into the node forces and (Full) ½ coef S into the node couplings;
+            // returns ∇g(q̄) over the eight nodes (also used by the slide dofs)
+            let add_row = |row: &DotRow,
+                           coef: f64,
+                           fa: &mut [Vec3; 4],
+                           fb: &mut [Vec3; 4],
+                           cb: &mut [[f64; 16]],
+                           cab: &mut [f64; 16]| {
+                let sr = SparseRow::new(row, a.is_some());
+                let mut buf = [Vec3::zeros(); 8];
+                let grad = sr.grad_at(&qa_bar, &qb_bar, &mut buf);
+                sr.add_forces(grad, coef, fa, fb);
                 if jac {
-                    // ½ coef S with S = αβᵀ + βαᵀ, as three branch-free 4 × 4 node blocks
-                    let (al, be) = (row.u.coeffs(), row.w.coeffs());
-                    let hc = 0.5 * coef;
-                    hess_block(&mut cb[bb], &al, &be, hc, 4, 4);
-                    if let Some(a) = a {
-                        hess_block(&mut cb[a], &al, &be, hc, 0, 0);
-                        hess_block(cab, &al, &be, hc, 0, 4);
-                    }
+                    sr.add_hessian(0.5 * coef, cb, a, bb, cab);
                 }
-                grad
+                sr.expand(grad)
             };
             let mut fa = [Vec3::zeros(); 4];
             let mut fb = [Vec3::zeros(); 4];
-            for (k, row) in jt.rows.iter().enumerate().filter(|_| !final_pass) {
+            for (k, sr) in jt.sparse.iter().enumerate().filter(|_| !final_pass) {
                 let mu = ws.mu[jt.row0 + k];
-                let grad = add_row(row, mu, &mut fa, &mut fb, &mut ws.cbody, &mut cab);
+                // compact ∇g(q̄) over the row's non-zero nodes (see `SparseRow`)
+                let grad = sr.grad_at(&qa_bar, &qb_bar, &mut buf);
+                sr.add_forces(grad, mu, &mut fa, &mut fb);
+                if jac {
+                    sr.add_hessian(0.5 * mu, &mut ws.cbody, a, bb, &mut cab);
+                }
                 // u, w at the iterate once: the value and the gradient ∇g(q)
-                let (u1, w1) = (row.u.eval(&qa, &qb), row.w.eval(&qa, &qb));
-                let gv = u1.dot(&w1) - row.offset;
+                let (u1, w1) = sr.uw(&qa, &qb);
+                let gv = sr.value(&u1, &w1);
                 res = res.max(gv.abs() * gscale);
                 if model.dense {
                     ws.drhs[6 * nb + jt.row0 + k] = -gv;
@@ -177,17 +206,20 @@ pub(crate) fn evaluate(
                     sink.blocks[bb].r[6 + k] = -gv;
                 }
                 if jac {
-                    // multiplier columns P̄ᵀ∇g(q̄)
-                    sink.body_mu(bb, j, k, &project(&grad[4..], &dbar_b));
-                    if let Some(a) = a {
-                        sink.body_mu(a, j, k, &project(&grad[..4], &dbar_a));
+                    // multiplier columns P̄ᵀ∇g(q̄) (skipped where the row is zero)
+                    if let Some(col) = sr.project(grad, Side::B, &dbar_b) {
+                        sink.body_mu(bb, j, k, &col);
+                    }
+                    if let (Some(a), Some(col)) = (a, sr.project(grad, Side::A, &dbar_a)) {
+                        sink.body_mu(a, j, k, &col);
                     }
                     // joint rows ∇g(q) Q
-                    let (al, be) = (row.u.coeffs(), row.w.coeffs());
-                    let g1: [Vec3; 8] = std::array::from_fn(|n| w1 * al[n] + u1 * be[n]);
-                    sink.mu_body(j, k, bb, &row_q(&g1[4..], &d_b));
-                    if let Some(a) = a {
-                        sink.mu_body(j, k, a, &row_q(&g1[..4], &d_a));
+                    let g1 = sr.grad(&u1, &w1, &mut buf1);
+                    if let Some(row) = sr.project(g1, Side::B, &d_b) {
+                        sink.mu_body(j, k, bb, &row);
+                    }
+                    if let (Some(a), Some(row)) = (a, sr.project(g1, Side::A, &d_a)) {
+                        sink.mu_body(j, k, a, &row);
                     }
                 }
             }
@@ -202,6 +234,8 @@ pub(crate) fn evaluate(
                     .map_or(0.0, |i| actuator_input(model, j, dk, held.inputs, i));
                 match dof {
                     DofRt::Slide(row) => {
+                        let qa_n = a.map_or(zero, |a| body_nodes(&ws.qn, a));
+                        let qb_n = body_nodes(&ws.qn, bb);
                         let s0 = row.eval(&qa_n, &qb_n);
                         let s1 = row.eval(&qa, &qb);
                         let ds = s1 - s0;
@@ -255,6 +289,8 @@ pub(crate) fn evaluate(
                         if loaded || final_pass {
                             let dqa = a.map_or(zero, |a| body_nodes(&ws.dq, a));
                             let dqb = body_nodes(&ws.dq, bb);
+                            let qa_n = a.map_or(zero, |a| body_nodes(&ws.qn, a));
+                            let qb_n = body_nodes(&ws.qn, bb);
                             let (s0, c0) = (tr.sin.eval(&qa_n, &qb_n), tr.cos.eval(&qa_n, &qb_n));
                             let ds = row_increment(&tr.sin, &qa_bar, &qb_bar, &dqa, &dqb);
                             let dc = row_increment(&tr.cos, &qa_bar, &qb_bar, &dqa, &dqb);
@@ -359,6 +395,8 @@ pub(crate) fn evaluate(
                 if jac && c_d != 0.0 {
                     // d(hh (c/h)(θᴮ − θᴬ))/dε through the exact ∂θ/∂ε of each body
                     let kap = hh * c_d / h;
+                    let qa_n = a.map_or(zero, |a| body_nodes(&ws.qn, a));
+                    let qb_n = body_nodes(&ws.qn, bb);
                     let jb = theta_jac(&qb_n, &qb);
                     let ja = a.map(|_| theta_jac(&qa_n, &qa));
                     for r in 0..3 {
@@ -374,61 +412,47 @@ pub(crate) fn evaluate(
                     }
                 }
             }
-            // node forces of this joint into R̃
-            if let Some(a) = a {
-                for k in 0..4 {
-                    let v = read3(&ws.rn, 12 * a + 3 * k) + fa[k];
-                    write3(&mut ws.rn, 12 * a + 3 * k, &v);
+            // node forces of this joint into R̃ (the final pass does not use R̃)
+            if !final_pass {
+                if let Some(a) = a {
+                    for k in 0..4 {
+                        let v = read3(&ws.rn, 12 * a + 3 * k) + fa[k];
+                        write3(&mut ws.rn, 12 * a + 3 * k, &v);
+                    }
                 }
-            }
-            for k in 0..4 {
-                let v = read3(&ws.rn, 12 * bb + 3 * k) + fb[k];
-                write3(&mut ws.rn, 12 * bb + 3 * k, &v);
+                for k in 0..4 {
+                    let v = read3(&ws.rn, 12 * bb + 3 * k) + fb[k];
+                    write3(&mut ws.rn, 12 * bb + 3 * k, &v);
+                }
             }
             if jac {
-                for r in 0..36 {
-                    ws.xbody[bb][r] += x_bb[r];
+                for (x, y) in ws.xbody[bb].iter_mut().zip(&x_bb) {
+                    *x += y;
                 }
                 if let Some(a) = a {
-                    for r in 0..36 {
-                        ws.xbody[a][r] += x_aa[r];
+                    for (x, y) in ws.xbody[a].iter_mut().zip(&x_aa) {
+                        *x += y;
                     }
-                    let mut blk = x_ab;
-                    node_block(&cab, &dbar_a, &d_b, &mut blk);
-                    sink.body_body(a, bb, &blk);
+                    // the extra blocks complete in place (zeroed again for the next joint)
+                    node_block(&cab, &dbar_a, &d_b, &mut x_ab);
+                    sink.body_body(a, bb, &x_ab);
                     let mut cba = [0.0; 16];
                     for n in 0..4 {
                         for m in 0..4 {
                             cba[4 * n + m] = cab[4 * m + n];
                         }
                     }
-                    let mut blk = x_ba;
-                    node_block(&cba, &dbar_b, &d_a, &mut blk);
-                    sink.body_body(bb, a, &blk);
+                    node_block(&cba, &dbar_b, &d_a, &mut x_ba);
+                    sink.body_body(bb, a, &x_ba);
                 }
             }
         }
     }
     ws.dense = sink_dense;
     ws.blocks = sink_blocks;
-    res = res.max(project_bodies(model, ws, held, hh, jac, nd, &mut work));
+    res = res.max(project_bodies(model, ws, held, hh, mode, nd, &mut work));
     *work_out = work;
     Norms { res }
-}
-
-/// `c[4n + m] += (αₙ hc) β_m + (βₙ hc) α_m` for the node rows `r0..r0 + 4` and columns
-/// `c0..c0 + 4` of the 8 × 8 row Hessian `S = αβᵀ + βαᵀ` (see `DotRow::hessian`).
-#[inline]
-fn hess_block(c: &mut [f64; 16], al: &[f64; 8], be: &[f64; 8], hc: f64, r0: usize, c0: usize) {
-    for n in 0..4 {
-        let (an, bn) = (al[r0 + n] * hc, be[r0 + n] * hc);
-        if an == 0.0 && bn == 0.0 {
-            continue;
-        }
-        for m in 0..4 {
-            c[4 * n + m] += an * be[c0 + m] + bn * al[c0 + m];
-        }
-    }
 }
 
 /// Value of the actuator input driving dof `dk` of joint `j` (inputs start at `first`).

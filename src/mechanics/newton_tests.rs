@@ -108,7 +108,7 @@ fn sample() -> ModelDef {
 fn residual(model: &Model, ws: &mut Work, held: &Held, h: f64) -> Vec<f64> {
     let mut w = 0.0;
     // the Jacobian pass also assembles the full residual (the final pass skips the rows)
-    evaluate(model, ws, held, h, true, &mut w);
+    evaluate(model, ws, held, h, Mode::Full, &mut w);
     ws.drhs.iter().map(|x| -x).collect()
 }
 
@@ -169,7 +169,7 @@ fn assert_jacobian(def: &ModelDef, stiffness: &[f64], damping: &[f64], scale: f6
     let base_dq = ws.dq.clone();
     let base_mu = ws.mu.clone();
     let mut w = 0.0;
-    evaluate(&model, &mut ws, &held, h, true, &mut w);
+    evaluate(&model, &mut ws, &held, h, Mode::Full, &mut w);
     let jac = ws.dense.clone();
     let n = ws.drhs.len();
     let eps = 1e-6;
@@ -192,4 +192,70 @@ fn assert_jacobian(def: &ModelDef, stiffness: &[f64], damping: &[f64], scale: f6
         }
     }
     assert!(worst < 1e-7, "largest Jacobian mismatch {worst:e}");
+}
+
+/// `Mode::Residual` gives bit-identical right-hand sides, norm and work to `Mode::Full` at the
+/// same iterate, and leaves the matrices (which may hold factors) untouched.
+#[test]
+fn residual_mode_matches_full_and_keeps_matrices() {
+    const SENTINEL: f64 = 1234.5;
+    for dense in [false, true] {
+        let mut model = Model::new(&sample(), SolverSettings::default()).expect("model");
+        model.dense = dense;
+        let mut ws = Work::new(&model);
+        let inputs: Vec<f64> = (0..model.inputs().len())
+            .map(|k| 0.3 + 0.7 * (k as f64).sin())
+            .collect();
+        let nj = model.def().joints.len();
+        let damping = vec![0.2; nj];
+        let stiffness = vec![1.5; nj];
+        let held = Held {
+            inputs: &inputs,
+            damping: &damping,
+            stiffness: &stiffness,
+        };
+        let h = 0.05;
+        // a nontrivial iterate: a first Newton update from the start, multipliers
+        let mut w = 0.0;
+        evaluate(&model, &mut ws, &held, h, Mode::Full, &mut w);
+        assert!(solve(&model, &mut ws));
+        update(&model, &mut ws);
+        for (k, m) in ws.mu.iter_mut().enumerate() {
+            *m = 0.01 * (k as f64 + 1.0).sin();
+        }
+        let (mut w_full, mut w_res) = (0.0, 0.0);
+        let full = evaluate(&model, &mut ws, &held, h, Mode::Full, &mut w_full);
+        let r_full: Vec<Vec<f64>> = ws.blocks.iter().map(|b| b.r.to_vec()).collect();
+        let d_full = ws.drhs.clone();
+        for b in &mut ws.blocks {
+            b.d.fill(SENTINEL);
+            b.u.fill(SENTINEL);
+            b.l.fill(SENTINEL);
+            b.r.fill(-SENTINEL);
+        }
+        ws.dense.fill(SENTINEL);
+        ws.drhs.fill(-SENTINEL);
+        let res = evaluate(&model, &mut ws, &held, h, Mode::Residual, &mut w_res);
+        assert_eq!(res.res.to_bits(), full.res.to_bits(), "dense {dense}");
+        assert_eq!(w_res.to_bits(), w_full.to_bits(), "dense {dense}");
+        let bits = |v: &[f64]| v.iter().map(|x| x.to_bits()).collect::<Vec<_>>();
+        if dense {
+            assert_eq!(bits(&ws.drhs), bits(&d_full));
+        } else {
+            for (b, r) in ws.blocks.iter().zip(&r_full) {
+                assert_eq!(bits(&b.r), bits(r));
+            }
+        }
+        for b in &ws.blocks {
+            let all = b.d.iter().chain(b.u.iter()).chain(b.l.iter());
+            assert!(
+                all.into_iter().all(|x| *x == SENTINEL),
+                "block matrix touched"
+            );
+        }
+        assert!(
+            ws.dense.iter().all(|x| *x == SENTINEL),
+            "dense matrix touched"
+        );
+    }
 }

@@ -12,7 +12,7 @@
 use super::assemble::{read3, write3};
 use super::error::StepError;
 use super::model::Model;
-use super::newton::{evaluate, expm1_so3, solve, update, Held, Work};
+use super::newton::{evaluate, expm1_so3, solve, update, Held, Mode, Work};
 use super::state::State;
 
 /// Statistics of one step.
@@ -179,7 +179,7 @@ fn stage(model: &Model, ws: &mut Work, held: &Held, h: f64) -> Result<StepStats,
     let mut prev_full = f64::INFINITY;
     loop {
         it += 1;
-        let n = evaluate(model, ws, held, h, true, &mut work);
+        let n = evaluate(model, ws, held, h, Mode::Full, &mut work);
         if !n.res.is_finite() {
             return Err(StepError::NonFinite("state"));
         }
@@ -213,7 +213,7 @@ fn stage(model: &Model, ws: &mut Work, held: &Held, h: f64) -> Result<StepStats,
         }
     }
     // work and unwrapped angles at the converged iterate
-    let _ = evaluate(model, ws, held, h, false, &mut work);
+    let _ = evaluate(model, ws, held, h, Mode::Final, &mut work);
     if !work.is_finite() || ws.acc.iter().any(|x| !x.is_finite()) {
         return Err(StepError::NonFinite("state"));
     }
