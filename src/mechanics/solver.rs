@@ -12,9 +12,9 @@
 //! (inertia plus O(h²) terms plus the Schur updates `−L Y` of the children, regular for
 //! positive masses and inertias), `B` (6 × m) the multiplier columns, `C` (m × 6) the
 //! constraint rows and `E = 0` (m × m; kept general). It is not symmetric. [`factor_tree`]
-//! factors `K` and the m × m Schur complement `S = E − C K⁻¹ B` (both with partial pivoting,
-//! fixed sizes through const generics), forms `Y = D⁻¹ U` and updates the parent's `K` by
-//! `−L Y`; [`solve_factored`] then solves for any number of right-hand sides with the stored
+//! inverts `K` and the m × m Schur complement `S = E − C K⁻¹ B` (Gauss–Jordan with partial
+//! pivoting; fixed sizes through const generics, so that every loop unrolls), forms
+//! `Y = D⁻¹ U` and updates the parent's `K` by `−L Y`; [`solve_factored`] then solves for any number of right-hand sides with the stored
 //! factors (forward `y = D⁻¹ r`, `r_p −= L y`, back `x = y − Y x_p`); [`solve_tree`] does both.
 //!
 //! Systems with loop-closing joints use one dense LU with partial pivoting over all unknowns
@@ -106,8 +106,8 @@ pub fn lu_solve(a: &[f64], n: usize, s: usize, piv: &[usize], b: &mut [f64]) {
 /// supernode: `x_b` (6) then `μ` (m), `n = 6 + m`):
 /// `d = D = [K B; C E]` (`K` 6 × 6 body–body, `B` 6 × m multiplier columns, `C` m × 6
 /// constraint rows, `E` m × m, zero in the Newton and projection systems), `u = U`, `l = L`.
-/// After it, `d`, `u` and `piv` hold the factors (see [`factor_tree`]); `l` and `n` are kept;
-/// `r` is never read or written by the factorisation.
+/// After it, `d` and `u` hold the factors (see [`factor_tree`]); `l` and `n` are kept; `r` is
+/// never read or written by the factorisation.
 #[derive(Clone, Debug)]
 pub struct Block {
     /// Size `n = 6 + m` (`6 ≤ n ≤` [`NMAX`]).
@@ -121,8 +121,6 @@ pub struct Block {
     pub l: [f64; 6 * NMAX],
     /// Right-hand side, then the solution.
     pub r: [f64; NMAX],
-    /// Row interchanges of the factors: `K` in `0..6`, the Schur complement `S` in `6..n`.
-    pub piv: [u8; NMAX],
 }
 
 impl Block {
@@ -136,7 +134,6 @@ impl Block {
             u: [0.0; NMAX * 6],
             l: [0.0; 6 * NMAX],
             r: [0.0; NMAX],
-            piv: [0; NMAX],
         }
     }
 
@@ -165,7 +162,11 @@ fn load<const R: usize, const C: usize>(
     c0: usize,
     s: usize,
 ) -> [[f64; C]; R] {
-    std::array::from_fn(|i| std::array::from_fn(|j| a[(r0 + i) * s + c0 + j]))
+    let mut x = [[0.0; C]; R];
+    for i in 0..R {
+        x[i].copy_from_slice(&a[(r0 + i) * s + c0..(r0 + i) * s + c0 + C]);
+    }
+    x
 }
 
 /// Writes `x` at `(r0, c0)` of the row-major `a` (row stride `s`).
@@ -182,24 +183,38 @@ fn store<const R: usize, const C: usize>(
     }
 }
 
-/// Largest `|entry|` (NaN is propagated as infinity so that it fails the finiteness checks).
+/// Largest `|entry|` (NaN entries are skipped; a comparison select vectorises where
+/// `f64::max` does not).
 #[inline(always)]
 fn amax<const R: usize, const C: usize>(a: &[[f64; C]; R]) -> f64 {
     let mut m = 0.0_f64;
     for row in a {
         for &v in row {
-            let v = if v.is_nan() { f64::INFINITY } else { v.abs() };
+            let v = v.abs();
             m = if v > m { v } else { m };
         }
     }
     m
 }
 
-/// In-place LU factorisation with partial pivoting (`P A = L U`, unit `L` below the diagonal);
-/// `piv[k]` is the row swapped with row `k` at step `k`. False for a pivot not above `tiny`
-/// or not finite.
+/// True if every entry is finite (the sum is: NaN and infinities propagate).
 #[inline(always)]
-fn lu<const N: usize>(a: &mut [[f64; N]; N], piv: &mut [u8; N], tiny: f64) -> bool {
+fn finite<const R: usize, const C: usize>(a: &[[f64; C]; R]) -> bool {
+    let mut s = 0.0;
+    for row in a {
+        for &v in row {
+            s += v;
+        }
+    }
+    s.is_finite()
+}
+
+/// In-place inverse by Gauss–Jordan elimination with partial (row) pivoting; false if a pivot
+/// is not above `tiny` or the inverse is not finite. Every update runs over full fixed-length
+/// rows, so the loops unroll and vectorise.
+#[inline(always)]
+fn invert<const N: usize>(a: &mut [[f64; N]; N], tiny: f64) -> bool {
+    let mut piv = [0usize; N];
     for k in 0..N {
         let mut p = k;
         let mut best = a[k][k].abs();
@@ -213,216 +228,193 @@ fn lu<const N: usize>(a: &mut [[f64; N]; N], piv: &mut [u8; N], tiny: f64) -> bo
         if !(best > tiny && best.is_finite()) {
             return false;
         }
-        piv[k] = p as u8;
+        piv[k] = p;
         a.swap(k, p);
-        let pr = a[k];
-        let inv = 1.0 / pr[k];
-        for i in k + 1..N {
-            let f = a[i][k] * inv;
-            a[i][k] = f;
-            for j in k + 1..N {
-                a[i][j] -= f * pr[j];
+        let mut rk = a[k];
+        let inv = 1.0 / rk[k];
+        rk[k] = 1.0;
+        for j in 0..N {
+            rk[j] *= inv;
+        }
+        for i in 0..N {
+            if i != k {
+                let f = a[i][k];
+                a[i][k] = 0.0;
+                for j in 0..N {
+                    a[i][j] -= f * rk[j];
+                }
+            }
+        }
+        a[k] = rk;
+    }
+    // row interchanges of A are column interchanges of A⁻¹, undone in reverse order
+    for k in (0..N).rev() {
+        let p = piv[k];
+        if p != k {
+            for row in a.iter_mut() {
+                row.swap(k, p);
             }
         }
     }
-    true
+    finite(a)
 }
 
-/// Solves `A X = B` in place (`K` right-hand columns, `x` holds `B` then `X`) with [`lu`]'s
-/// factors.
+/// `A B` for `A` `R × C`, `B` `C × K`.
 #[inline(always)]
-fn lu_solve_mat<const N: usize, const K: usize>(
-    a: &[[f64; N]; N],
-    piv: &[u8; N],
-    x: &mut [[f64; K]; N],
-) {
-    for k in 0..N {
-        x.swap(k, piv[k] as usize);
-    }
-    for i in 1..N {
-        for j in 0..i {
-            let f = a[i][j];
-            let xj = x[j];
+fn mul<const R: usize, const C: usize, const K: usize>(
+    a: &[[f64; C]; R],
+    b: &[[f64; K]; C],
+) -> [[f64; K]; R] {
+    let mut x = [[0.0; K]; R];
+    for i in 0..R {
+        for l in 0..C {
+            let f = a[i][l];
             for c in 0..K {
-                x[i][c] -= f * xj[c];
+                x[i][c] += f * b[l][c];
             }
         }
     }
-    for i in (0..N).rev() {
-        for j in i + 1..N {
-            let f = a[i][j];
-            let xj = x[j];
-            for c in 0..K {
-                x[i][c] -= f * xj[c];
-            }
-        }
-        let inv = 1.0 / a[i][i];
-        for c in 0..K {
-            x[i][c] *= inv;
-        }
-    }
+    x
 }
 
-/// Solves `A x = b` in place with [`lu`]'s factors.
-#[inline(always)]
-fn lu_solve_vec<const N: usize>(a: &[[f64; N]; N], piv: &[u8; N], x: &mut [f64; N]) {
-    for k in 0..N {
-        x.swap(k, piv[k] as usize);
-    }
-    for i in 1..N {
-        let mut acc = x[i];
-        for j in 0..i {
-            acc -= a[i][j] * x[j];
-        }
-        x[i] = acc;
-    }
-    for i in (0..N).rev() {
-        let mut acc = x[i];
-        for j in i + 1..N {
-            acc -= a[i][j] * x[j];
-        }
-        x[i] = acc / a[i][i];
-    }
-}
-
-/// `x −= A y` for `A` `R × C`.
+/// `x −= A B` for `A` `R × C`, `B` `C × K`.
 #[inline(always)]
 fn sub_mul<const R: usize, const C: usize, const K: usize>(
     x: &mut [[f64; K]; R],
     a: &[[f64; C]; R],
-    y: &[[f64; K]; C],
+    b: &[[f64; K]; C],
 ) {
     for i in 0..R {
         for l in 0..C {
             let f = a[i][l];
             for c in 0..K {
-                x[i][c] -= f * y[l][c];
+                x[i][c] -= f * b[l][c];
             }
         }
     }
 }
 
+/// `A v` for `A` `R × C`.
+#[inline(always)]
+fn mul_vec<const R: usize, const C: usize>(a: &[[f64; C]; R], v: &[f64; C]) -> [f64; R] {
+    let mut x = [0.0; R];
+    for i in 0..R {
+        for j in 0..C {
+            x[i] += a[i][j] * v[j];
+        }
+    }
+    x
+}
+
 /// Factors supernode `b` (`m = M` joint rows) in place and, if `has_parent`, replaces `U` by
 /// `Y = D⁻¹ U` and returns the parent's Schur update `L Y` (6 × 6); `None` if singular.
 ///
-/// `D = [K B; C E]` is eliminated through `K`: `K = P_K⁻¹ L_K U_K`, `S = E − C K⁻¹ B`
-/// (m × m) `= P_S⁻¹ L_S U_S`. Stored in `d`: the LU of `K` (rows/columns `0..6`), `K⁻¹ B`
-/// (rows `0..6`, columns `6..n`), `C` (kept, rows `6..n`, columns `0..6`), the LU of `S`
-/// (rows and columns `6..n`); pivots in `piv`.
+/// `D = [K B; C E]` is eliminated through `K`: with `S = E − C K⁻¹ B` (m × m),
+/// `D⁻¹ [f; g] = [t − K⁻¹B μ; μ]`, `t = K⁻¹ f`, `μ = S⁻¹ (g − C t)`. Stored in `d`: `K⁻¹`
+/// (rows and columns `0..6`), `K⁻¹ B` (rows `0..6`, columns `6..n`), `C` (kept, rows `6..n`,
+/// columns `0..6`) and `S⁻¹` (rows and columns `6..n`). The explicit inverses (Gauss–Jordan
+/// with partial pivoting) make every later product a fixed-size loop; `K` (inertia plus
+/// positive semi-definite child updates) and `S` are well conditioned for regular models.
 #[inline(always)]
 fn factor_block<const M: usize>(b: &mut Block, has_parent: bool) -> Option<[[f64; 6]; 6]> {
-    let mut k: [[f64; 6]; 6] = load(&b.d, 0, 0, NMAX);
-    let mut kb: [[f64; M]; 6] = load(&b.d, 0, 6, NMAX);
+    let mut ki: [[f64; 6]; 6] = load(&b.d, 0, 0, NMAX);
+    let bm: [[f64; M]; 6] = load(&b.d, 0, 6, NMAX);
     let c: [[f64; 6]; M] = load(&b.d, 6, 0, NMAX);
     let mut s: [[f64; M]; M] = load(&b.d, 6, 6, NMAX);
-    let kmax = amax(&k);
-    if !(kmax.is_finite() && kmax > 0.0) {
+    let kmax = amax(&ki);
+    if !(kmax.is_finite() && kmax > 0.0) || !invert(&mut ki, REL * kmax) {
         return None;
     }
-    let mut pk = [0u8; 6];
-    if !lu(&mut k, &mut pk, REL * kmax) {
-        return None;
-    }
-    lu_solve_mat(&k, &pk, &mut kb);
+    let kb = mul(&ki, &bm);
     // S = E − C K⁻¹B; pivots are judged against the size of the terms before cancellation
     sub_mul(&mut s, &c, &kb);
-    let sref = amax(&s).max(6.0 * amax(&c) * amax(&kb));
-    if !sref.is_finite() {
-        return None;
+    if M > 0 {
+        let sref = amax(&s).max(6.0 * amax(&c) * amax(&kb));
+        if !(sref.is_finite() && invert(&mut s, REL * sref)) {
+            return None;
+        }
     }
-    let mut ps = [0u8; M];
-    if !lu(&mut s, &mut ps, REL * sref) {
-        return None;
-    }
-    store(&mut b.d, 0, 0, NMAX, &k);
+    store(&mut b.d, 0, 0, NMAX, &ki);
     store(&mut b.d, 0, 6, NMAX, &kb);
     store(&mut b.d, 6, 6, NMAX, &s);
-    b.piv[..6].copy_from_slice(&pk);
-    b.piv[6..6 + M].copy_from_slice(&ps);
-    let mut upd = [[0.0; 6]; 6];
-    if has_parent {
-        // Y_μ = S⁻¹ (U_μ − C K⁻¹ U_x), Y_x = K⁻¹ U_x − K⁻¹B Y_μ
-        let mut yx: [[f64; 6]; 6] = load(&b.u, 0, 0, 6);
-        lu_solve_mat(&k, &pk, &mut yx);
-        let mut ym: [[f64; 6]; M] = load(&b.u, 6, 0, 6);
-        sub_mul(&mut ym, &c, &yx);
-        lu_solve_mat(&s, &ps, &mut ym);
-        sub_mul(&mut yx, &kb, &ym);
-        store(&mut b.u, 0, 0, 6, &yx);
-        store(&mut b.u, 6, 0, 6, &ym);
-        // L Y = L_x Y_x + L_μ Y_μ
-        let lx: [[f64; 6]; 6] = load(&b.l, 0, 0, NMAX);
-        let lm: [[f64; M]; 6] = load(&b.l, 0, 6, NMAX);
-        for i in 0..6 {
-            for l in 0..6 {
-                let f = lx[i][l];
-                for j in 0..6 {
-                    upd[i][j] += f * yx[l][j];
-                }
-            }
-            for l in 0..M {
-                let f = lm[i][l];
-                for j in 0..6 {
-                    upd[i][j] += f * ym[l][j];
-                }
-            }
+    if !has_parent {
+        return Some([[0.0; 6]; 6]);
+    }
+    // Y_μ = S⁻¹ (U_μ − C K⁻¹ U_x), Y_x = K⁻¹ U_x − K⁻¹B Y_μ
+    let ux: [[f64; 6]; 6] = load(&b.u, 0, 0, 6);
+    let mut yx = mul(&ki, &ux);
+    let mut um: [[f64; 6]; M] = load(&b.u, 6, 0, 6);
+    sub_mul(&mut um, &c, &yx);
+    let ym = mul(&s, &um);
+    sub_mul(&mut yx, &kb, &ym);
+    store(&mut b.u, 0, 0, 6, &yx);
+    store(&mut b.u, 6, 0, 6, &ym);
+    // L Y = L_x Y_x + L_μ Y_μ
+    let lx: [[f64; 6]; 6] = load(&b.l, 0, 0, NMAX);
+    let lm: [[f64; M]; 6] = load(&b.l, 0, 6, NMAX);
+    let mut upd = mul(&lx, &yx);
+    let um = mul(&lm, &ym);
+    for i in 0..6 {
+        for j in 0..6 {
+            upd[i][j] += um[i][j];
         }
     }
     Some(upd)
 }
 
 /// Forward step of the solve for supernode `b` (`m = M`): `r ← D⁻¹ r` with the stored
-/// factors; returns `L r` (the parent's right-hand side update; meaningless for a root).
+/// factors; returns `L r` (the parent's right-hand side update) if `has_parent`, else zero.
 #[inline(always)]
-fn forward_block<const M: usize>(b: &mut Block) -> [f64; 6] {
-    let k: [[f64; 6]; 6] = load(&b.d, 0, 0, NMAX);
-    let pk: [u8; 6] = std::array::from_fn(|i| b.piv[i]);
-    let mut x: [f64; 6] = std::array::from_fn(|i| b.r[i]);
-    lu_solve_vec(&k, &pk, &mut x);
-    let mut g: [f64; M] = std::array::from_fn(|i| b.r[6 + i]);
+fn forward_block<const M: usize>(b: &mut Block, has_parent: bool) -> [f64; 6] {
+    // t = K⁻¹ f, μ = S⁻¹ (g − C t), x = t − K⁻¹B μ
+    let ki: [[f64; 6]; 6] = load(&b.d, 0, 0, NMAX);
+    let f: [f64; 6] = b.r[..6].try_into().unwrap_or([0.0; 6]);
+    let mut x = mul_vec(&ki, &f);
+    let mut g = [0.0; M];
     if M > 0 {
-        // μ = S⁻¹ (g − C K⁻¹ f), x = K⁻¹ f − K⁻¹B μ
         let c: [[f64; 6]; M] = load(&b.d, 6, 0, NMAX);
-        let s: [[f64; M]; M] = load(&b.d, 6, 6, NMAX);
+        let si: [[f64; M]; M] = load(&b.d, 6, 6, NMAX);
         let kb: [[f64; M]; 6] = load(&b.d, 0, 6, NMAX);
-        let ps: [u8; M] = std::array::from_fn(|i| b.piv[6 + i]);
+        let mut h: [f64; M] = b.r[6..6 + M].try_into().unwrap_or([0.0; M]);
+        let ct = mul_vec(&c, &x);
         for i in 0..M {
-            for l in 0..6 {
-                g[i] -= c[i][l] * x[l];
-            }
+            h[i] -= ct[i];
         }
-        lu_solve_vec(&s, &ps, &mut g);
+        g = mul_vec(&si, &h);
+        let kg = mul_vec(&kb, &g);
         for i in 0..6 {
-            for j in 0..M {
-                x[i] -= kb[i][j] * g[j];
-            }
+            x[i] -= kg[i];
         }
         b.r[6..6 + M].copy_from_slice(&g);
     }
     b.r[..6].copy_from_slice(&x);
+    if !has_parent {
+        return [0.0; 6];
+    }
     let lx: [[f64; 6]; 6] = load(&b.l, 0, 0, NMAX);
     let lm: [[f64; M]; 6] = load(&b.l, 0, 6, NMAX);
-    std::array::from_fn(|i| {
-        let mut acc = 0.0;
-        for j in 0..6 {
-            acc += lx[i][j] * x[j];
-        }
-        for j in 0..M {
-            acc += lm[i][j] * g[j];
-        }
-        acc
-    })
+    let mut ly = mul_vec(&lx, &x);
+    let lg = mul_vec(&lm, &g);
+    for i in 0..6 {
+        ly[i] += lg[i];
+    }
+    ly
 }
 
 /// Back substitution of supernode `b` (`n = 6 + M`): `r ← r − Y x_p`.
 #[inline(always)]
 fn back_block<const M: usize>(b: &mut Block, xp: &[f64; 6]) {
-    for i in 0..6 + M {
-        let mut acc = b.r[i];
-        for j in 0..6 {
-            acc -= b.u[i * 6 + j] * xp[j];
+    let y: [[f64; 6]; 6] = load(&b.u, 0, 0, 6);
+    let yx = mul_vec(&y, xp);
+    for i in 0..6 {
+        b.r[i] -= yx[i];
+    }
+    if M > 0 {
+        let y: [[f64; 6]; M] = load(&b.u, 6, 0, 6);
+        let ym = mul_vec(&y, xp);
+        for i in 0..M {
+            b.r[6 + i] -= ym[i];
         }
-        b.r[i] = acc;
     }
 }
 
@@ -445,7 +437,7 @@ macro_rules! by_rows {
 /// Factors the tree system in place (leaves to root). `order` lists bodies parents first,
 /// `parent[b]` is the tree parent. Each supernode's diagonal block (after the Schur updates of
 /// its children) is eliminated through its body block `K` (see [`Block`]); on return
-/// `blocks[b].d`, `.u` (now `D⁻¹ U`) and `.piv` hold the factors that [`solve_factored`]
+/// `blocks[b].d` and `.u` (now `D⁻¹ U`) hold the factors that [`solve_factored`]
 /// uses, `.l` is unchanged and `.r` is neither read nor written. Returns false (factors
 /// unusable) if a pivot of `K` or of the Schur complement `S = E − C K⁻¹ B` is below `1e-14`
 /// times the size of its matrix (non-finite entries included).
@@ -477,7 +469,11 @@ pub fn solve_factored(blocks: &mut [Block], order: &[usize], parent: &[Option<us
     // leaves to root: y_c = D_c⁻¹ r_c, r_p −= L_c y_c
     for &c in order.iter().rev() {
         let b = &mut blocks[c];
-        let ly = by_rows!(b.n - 6, forward_block(b), unreachable!("supernode size"));
+        let ly = by_rows!(
+            b.n - 6,
+            forward_block(b, parent[c].is_some()),
+            unreachable!("supernode size")
+        );
         if let Some(p) = parent[c] {
             let r = &mut blocks[p].r;
             for i in 0..6 {
