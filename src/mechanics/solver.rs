@@ -322,7 +322,7 @@ fn factor_block<const M: usize>(b: &mut Block, has_parent: bool) -> Option<[[f64
     let c: [[f64; 6]; M] = load(&b.d, 6, 0, NMAX);
     let mut s: [[f64; M]; M] = load(&b.d, 6, 6, NMAX);
     let kmax = amax(&ki);
-    if !(kmax.is_finite() && kmax > 0.0) || !invert(&mut ki, REL * kmax) {
+    if !(kmax.is_finite() && kmax > 0.0 && invert(&mut ki, REL * kmax)) {
         return None;
     }
     let kb = mul(&ki, &bm);
