@@ -209,6 +209,18 @@ fn finite<const R: usize, const C: usize>(a: &[[f64; C]; R]) -> bool {
     s.is_finite()
 }
 
+/// True if every entry is zero.
+#[inline(always)]
+fn is_zero<const R: usize, const C: usize>(a: &[[f64; C]; R]) -> bool {
+    let mut z = true;
+    for row in a {
+        for &v in row {
+            z &= v == 0.0;
+        }
+    }
+    z
+}
+
 /// In-place inverse by Gauss–Jordan elimination with partial (row) pivoting; false if a pivot
 /// is not above `tiny` or the inverse is not finite. Every update runs over full fixed-length
 /// rows, so the loops unroll and vectorise.
@@ -340,11 +352,15 @@ fn factor_block<const M: usize>(b: &mut Block, has_parent: bool) -> Option<[[f64
     if !has_parent {
         return Some([[0.0; 6]; 6]);
     }
-    // Y_μ = S⁻¹ (U_μ − C K⁻¹ U_x), Y_x = K⁻¹ U_x − K⁻¹B Y_μ
+    // Y_μ = S⁻¹ (U_μ − C K⁻¹ U_x), Y_x = K⁻¹ U_x − K⁻¹B Y_μ; the body–body couplings U_x,
+    // L_x vanish in the projection system, whose products are then skipped
     let ux: [[f64; 6]; 6] = load(&b.u, 0, 0, 6);
-    let mut yx = mul(&ki, &ux);
+    let mut yx = [[0.0; 6]; 6];
     let mut um: [[f64; 6]; M] = load(&b.u, 6, 0, 6);
-    sub_mul(&mut um, &c, &yx);
+    if !is_zero(&ux) {
+        yx = mul(&ki, &ux);
+        sub_mul(&mut um, &c, &yx);
+    }
     let ym = mul(&s, &um);
     sub_mul(&mut yx, &kb, &ym);
     store(&mut b.u, 0, 0, 6, &yx);
@@ -352,11 +368,13 @@ fn factor_block<const M: usize>(b: &mut Block, has_parent: bool) -> Option<[[f64
     // L Y = L_x Y_x + L_μ Y_μ
     let lx: [[f64; 6]; 6] = load(&b.l, 0, 0, NMAX);
     let lm: [[f64; M]; 6] = load(&b.l, 0, 6, NMAX);
-    let mut upd = mul(&lx, &yx);
-    let um = mul(&lm, &ym);
-    for i in 0..6 {
-        for j in 0..6 {
-            upd[i][j] += um[i][j];
+    let mut upd = mul(&lm, &ym);
+    if !is_zero(&lx) {
+        let ux = mul(&lx, &yx);
+        for i in 0..6 {
+            for j in 0..6 {
+                upd[i][j] += ux[i][j];
+            }
         }
     }
     Some(upd)
