@@ -106,8 +106,9 @@ pub fn lu_solve(a: &[f64], n: usize, s: usize, piv: &[usize], b: &mut [f64]) {
 /// supernode: `x_b` (6) then `μ` (m), `n = 6 + m`):
 /// `d = D = [K B; C E]` (`K` 6 × 6 body–body, `B` 6 × m multiplier columns, `C` m × 6
 /// constraint rows, `E` m × m, zero in the Newton and projection systems), `u = U`, `l = L`.
-/// After it, `d` and `u` hold the factors (see [`factor_tree`]); `l` and `n` are kept; `r` is
-/// never read or written by the factorisation.
+/// After it, `d` holds `[K⁻¹, K⁻¹B; C, S⁻¹]` (`K` with the children's Schur updates,
+/// `S = E − C K⁻¹ B`), `u` holds `Y = D⁻¹ U` (unchanged for a root); `l` and `n` are kept; `r`
+/// is never read or written by the factorisation.
 #[derive(Clone, Debug)]
 pub struct Block {
     /// Size `n = 6 + m` (`6 ≤ n ≤` [`NMAX`]).
@@ -593,6 +594,12 @@ mod tests {
                 }
             }
         }
+        let (a, nt, off) = dense_of(&blocks, parent);
+        (blocks, a, nt, off)
+    }
+
+    /// The dense matrix `(a, nt, offsets)` of a tree system.
+    fn dense_of(blocks: &[Block], parent: &[Option<usize>]) -> (Vec<f64>, usize, Vec<usize>) {
         let off: Vec<usize> = blocks
             .iter()
             .scan(0, |s, b| {
@@ -618,7 +625,7 @@ mod tests {
                 }
             }
         }
-        (blocks, a, nt, off)
+        (a, nt, off)
     }
 
     /// Dense solution of `a x = r` for the right-hand sides held in the blocks.
@@ -716,6 +723,21 @@ mod tests {
             assert!(solve_tree(&mut blocks, &order, &parent));
             assert_close(&blocks, &off, &x);
         }
+        // the projection system has no body–body couplings between bodies (U_x = L_x = 0)
+        let (mut blocks, a, nt, off) = {
+            let (mut blocks, ..) = system(&parent, &[5, 3, 6, 0, 5, 2, 4, 6], false, &mut rng);
+            for b in &mut blocks {
+                b.u[..36].fill(0.0);
+                for j in 0..6 {
+                    b.l[j * NMAX..j * NMAX + 6].fill(0.0);
+                }
+            }
+            let (a, nt, off) = dense_of(&blocks, &parent);
+            (blocks, a, nt, off)
+        };
+        let x = dense_solve(&a, nt, &off, &blocks);
+        assert!(solve_tree(&mut blocks, &order, &parent));
+        assert_close(&blocks, &off, &x);
         for m in 0..=6 {
             let (mut blocks, a, nt, off) = system(&[None], &[m], false, &mut rng);
             let x = dense_solve(&a, nt, &off, &blocks);
