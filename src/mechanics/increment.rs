@@ -10,7 +10,7 @@ use crate::math::Vec3;
 
 /// Factors the assembled iteration matrix and solves for the assembled right-hand side; the
 /// solution replaces the right-hand side (`ws.drhs` or every `ws.blocks[b].r`) and the factors
-/// are kept (`ws.dense`/`ws.dpiv` or the tree blocks' `d`, `u`, `piv`) for [`resolve`]. False if
+/// are kept (`ws.dense`/`ws.dpiv` or the tree blocks' `d` and `u`) for [`resolve`]. False if
 /// the matrix is singular (the factors are then unusable).
 pub(crate) fn solve(model: &Model, ws: &mut Work) -> bool {
     if model.dense {
