@@ -4,11 +4,14 @@
 use super::assemble::{read3, write3};
 use super::kernels::expm1_so3;
 use super::model::Model;
-use super::solver::{lu_factor, lu_solve, solve_tree};
+use super::solver::{lu_factor, lu_solve, solve_factored, solve_tree};
 use super::work::Work;
 use crate::math::Vec3;
 
-/// Solves the assembled linear system; the solution replaces the right-hand side.
+/// Factors the assembled iteration matrix and solves for the assembled right-hand side; the
+/// solution replaces the right-hand side (`ws.drhs` or every `ws.blocks[b].r`) and the factors
+/// are kept (`ws.dense`/`ws.dpiv` or the tree blocks' `d` and `u`) for [`resolve`]. False if
+/// the matrix is singular (the factors are then unusable).
 pub(crate) fn solve(model: &Model, ws: &mut Work) -> bool {
     if model.dense {
         let n = ws.drhs.len();
@@ -20,6 +23,23 @@ pub(crate) fn solve(model: &Model, ws: &mut Work) -> bool {
     } else {
         solve_tree(&mut ws.blocks, &model.order, &model.parent)
     }
+}
+
+/// Solves for a new right-hand side with the factors kept by the last successful [`solve`]
+/// (chord Newton iterations): the right-hand side is read from, and the solution written to,
+/// `ws.drhs` (loop systems) or every `ws.blocks[b].r` (trees); only the right-hand side may
+/// have been re-assembled since. Always succeeds (the factors were checked by [`solve`]);
+/// returns true for symmetry with it.
+// the chord Newton iteration in `newton` is its caller (in progress)
+#[allow(dead_code)]
+pub(crate) fn resolve(model: &Model, ws: &mut Work) -> bool {
+    if model.dense {
+        let n = ws.drhs.len();
+        lu_solve(&ws.dense, n, n, &ws.dpiv, &mut ws.drhs);
+    } else {
+        solve_factored(&mut ws.blocks, &model.order, &model.parent);
+    }
+    true
 }
 
 /// Applies the Newton update; returns the scaled update norm of the body unknowns and that of
