@@ -30,8 +30,6 @@ pub(crate) fn solve(model: &Model, ws: &mut Work) -> bool {
 /// `ws.drhs` (loop systems) or every `ws.blocks[b].r` (trees); only the right-hand side may
 /// have been re-assembled since. Always succeeds (the factors were checked by [`solve`]);
 /// returns true for symmetry with it.
-// the chord Newton iteration in `newton` is its caller (in progress)
-#[allow(dead_code)]
 pub(crate) fn resolve(model: &Model, ws: &mut Work) -> bool {
     if model.dense {
         let n = ws.drhs.len();

@@ -28,7 +28,7 @@
 use super::assemble::{read3, write3};
 use super::body_terms::project_bodies;
 use super::constraint::{DotRow, Nodes};
-pub(crate) use super::increment::{solve, update};
+pub(crate) use super::increment::{resolve, solve, update};
 pub(crate) use super::kernels::{body_nodes, expm1_so3, rotation_increment};
 use super::kernels::{
     linvec_jac, node_block, outer, project, push_torque, row_q, torque_jac, Sink,
@@ -49,8 +49,6 @@ pub(crate) enum Mode {
     /// Jacobian: zeroes and fills only the right-hand sides (`Block::r` of every block, or
     /// `drhs`); the matrices `d`, `u`, `l` and `dense` are left untouched (they may hold the
     /// factors of an earlier `Full` iteration, for chord iterations).
-    // the chord iterations that call it are being added next to this
-    #[cfg_attr(not(test), allow(dead_code))]
     Residual,
     /// Final pass at the converged iterate: no constraint rows; computes `a`, `θ`, the
     /// unwrapped angles and the work only.

@@ -12,7 +12,7 @@
 use super::assemble::{read3, write3};
 use super::error::StepError;
 use super::model::Model;
-use super::newton::{evaluate, expm1_so3, solve, update, Held, Mode, Work};
+use super::newton::{evaluate, expm1_so3, resolve, solve, update, Held, Mode, Work};
 use super::state::State;
 
 /// Statistics of one step.
@@ -20,6 +20,9 @@ use super::state::State;
 pub struct StepStats {
     /// Newton iterations over all stages.
     pub iterations: usize,
+    /// Iterations among them that assembled and factored the Jacobian (the others are chord
+    /// iterations that reuse the factors: residual and back-substitution only).
+    pub factorizations: usize,
     /// Final scaled residual.
     pub residual: f64,
 }
@@ -101,6 +104,18 @@ pub fn step_state(model: &Model, state: &mut State, h: f64) -> Result<StepStats,
     Ok(stats)
 }
 
+/// Largest contraction per iteration `|δₖ|/|δₖ₋₁|` with which chord iterations go on reusing
+/// the factors of the last Jacobian; a slower one assembles and factors a fresh Jacobian.
+const CHORD_RATE: f64 = 0.1;
+
+/// Largest scaled body update of the first (Newton) iteration after which chord iterations
+/// are tried (their contraction rate is about the size of that update).
+const CHORD_START: f64 = 1e-3;
+
+/// A chord iterate is accepted when its estimated distance to the solution is below
+/// `CHORD_ACCEPT · tolerance` (1e-16 at the default tolerance: round-off).
+const CHORD_ACCEPT: f64 = 1e-6;
+
 /// Deepest halving of a stage whose Newton iteration failed.
 const MAX_HALVINGS: usize = 3;
 
@@ -119,6 +134,7 @@ fn robust_stage(
     match stage(model, ws, held, h) {
         Ok(s) => {
             stats.iterations += s.iterations;
+            stats.factorizations += s.factorizations;
             stats.residual = s.residual;
             Ok(())
         }
@@ -177,13 +193,26 @@ fn stage(model: &Model, ws: &mut Work, held: &Held, h: f64) -> Result<StepStats,
     let mut it = 0;
     let mut last_res: f64;
     let mut prev_full = f64::INFINITY;
+    let (mut prev_upd, mut prev_dmu) = (f64::INFINITY, f64::INFINITY);
+    // Newton with chord iterations: an iteration with a fresh Jacobian (assembled and factored)
+    // is followed by iterations that reuse its factors (residual + back-substitution) as long
+    // as they contract by ≤ CHORD_RATE per iteration; slower contraction refactors.
+    let mut fresh = true;
+    let mut factorizations = 0;
     loop {
         it += 1;
-        let n = evaluate(model, ws, held, h, Mode::Full, &mut work);
+        let mode = if fresh { Mode::Full } else { Mode::Residual };
+        let n = evaluate(model, ws, held, h, mode, &mut work);
         if !n.res.is_finite() {
             return Err(StepError::NonFinite("state"));
         }
-        if !solve(model, ws) {
+        let solved = if fresh {
+            factorizations += 1;
+            solve(model, ws)
+        } else {
+            resolve(model, ws)
+        };
+        if !solved {
             return Err(StepError::Singular);
         }
         let (upd, dmu) = update(model, ws);
@@ -191,19 +220,35 @@ fn stage(model: &Model, ws: &mut Work, held: &Held, h: f64) -> Result<StepStats,
             return Err(StepError::NonFinite("state"));
         }
         last_res = n.res.max(upd);
-        if upd <= tol && n.res <= tol {
+        // a Newton update ≤ tol at a residual ≤ tol leaves an error of O(|δ|²); a chord update
+        // only an error of O(rate·|δ|), so chord iterates are accepted by the test below only
+        if fresh && upd <= tol && n.res <= tol {
             break;
         }
-        // Newton regime: the full update (bodies and multipliers) contracted by θ ≤ 1e-2
-        // against the previous one, so the distance of the updated iterate to the solution is
-        // about θ·|δ|/(1 − θ) (quadratic convergence makes it smaller still). Accept once that
-        // estimate is below tol/100: as converged as an iterate that passed the test above.
+        // the full update (bodies and multipliers) contracted by θ ≤ 1e-2 against the previous
+        // one, so the distance of the updated iterate to the solution is about θ·|δ|/(1 − θ)
+        // (for Newton smaller still). Accept once that estimate is below tol/100: as converged
+        // as a Newton iterate that passed the test above.
         let full = upd.max(dmu);
         let theta = full / prev_full;
-        if it > 1 && theta <= 1e-2 && theta * full <= 1e-2 * tol {
+        if fresh && it > 1 && theta <= 1e-2 && theta * full <= 1e-2 * tol {
             last_res = theta * full;
             break;
         }
+        // A chord iterate carries about rate·|δ| of error into the accepted state, and the
+        // conservation laws hold only as far as the equations are solved: the body unknowns
+        // must be within round-off (CHORD_ACCEPT · tol) by that estimate, the multipliers (which
+        // do no work while the constraints hold) within tol/100 like a Newton iterate.
+        if !fresh {
+            let tb = upd / prev_upd;
+            let tm = (dmu / prev_dmu).min(1.0);
+            if tb <= 1e-2 && tb * upd <= CHORD_ACCEPT * tol && tm * dmu <= 1e-2 * tol {
+                last_res = (tb * upd).max(tm * dmu);
+                break;
+            }
+        }
+        prev_upd = upd;
+        prev_dmu = dmu;
         prev_full = full;
         if it >= maxit {
             return Err(StepError::NoConvergence {
@@ -211,6 +256,16 @@ fn stage(model: &Model, ws: &mut Work, held: &Held, h: f64) -> Result<StepStats,
                 residual: n.res.max(upd),
             });
         }
+        // the last allowed iteration is a Newton one, so a tight iteration budget
+        // (`max_iterations`) converges as it did without chord iterations
+        // (after the first iteration the chord rate is about the size of its update: chord
+        // iterations follow a small one only)
+        let slow = if it == 1 {
+            upd > CHORD_START
+        } else {
+            theta > CHORD_RATE
+        };
+        fresh = slow || it + 1 >= maxit;
     }
     // work and unwrapped angles at the converged iterate
     let _ = evaluate(model, ws, held, h, Mode::Final, &mut work);
@@ -242,6 +297,7 @@ fn stage(model: &Model, ws: &mut Work, held: &Held, h: f64) -> Result<StepStats,
     ws.hprev = h;
     Ok(StepStats {
         iterations: it,
+        factorizations,
         residual: last_res,
     })
 }
