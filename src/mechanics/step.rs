@@ -214,6 +214,8 @@ fn stage(model: &Model, ws: &mut Work, held: &Held, h: f64) -> Result<StepStats,
     let mut last_res: f64;
     let mut prev_full = f64::INFINITY;
     let (mut prev_upd, mut prev_dmu) = (f64::INFINITY, f64::INFINITY);
+    // best contraction of the body and multiplier updates since the last factorisation
+    let mut rates = [f64::INFINITY; 2];
     // Newton with chord iterations: an iteration with a fresh Jacobian (assembled and factored)
     // is followed by iterations that reuse its factors (residual + back-substitution) as long
     // as they contract by ≤ CHORD_RATE per iteration; slower contraction refactors.
@@ -259,11 +261,17 @@ fn stage(model: &Model, ws: &mut Work, held: &Held, h: f64) -> Result<StepStats,
         // conservation laws hold only as far as the equations are solved: the body unknowns
         // must be within round-off (CHORD_ACCEPT · tol) by that estimate, the multipliers (which
         // do no work while the constraints hold) within tol/100 like a Newton iterate.
-        if !fresh {
-            let tb = upd / prev_upd;
-            let tm = (dmu / prev_dmu).min(1.0);
-            if tb <= 1e-2 && tb * upd <= CHORD_ACCEPT * tol && tm * dmu <= 1e-2 * tol {
-                last_res = (tb * upd).max(tm * dmu);
+        // The chord rate is estimated by the best contraction seen since the factorisation:
+        // convergence is linear at that rate until round-off, where the observed ratios turn
+        // to noise (≈ 1) while the iterate is as converged as it gets.
+        if fresh {
+            rates = [f64::INFINITY; 2];
+        } else {
+            rates[0] = rates[0].min(upd / prev_upd);
+            rates[1] = rates[1].min(dmu / prev_dmu);
+            let [rb, rm] = rates;
+            if rb <= 1e-2 && rb * upd <= CHORD_ACCEPT * tol && rm.min(1.0) * dmu <= 1e-2 * tol {
+                last_res = (rb * upd).max(rm * dmu);
                 break;
             }
         }
