@@ -1,6 +1,6 @@
 //! Callgrind driver of the core step: `cargo build --profile profiling --example step_profile`,
 //! then `valgrind --tool=callgrind target/profiling/examples/step_profile dp 2000` (or
-//! `chain100 200`). Same settings as `benches/step.rs` (order 2, h = 1e-3, tolerance 1e-10).
+//! `chain100 200`; an optional third argument is the step size, default 1e-3). Same settings as `benches/step.rs` (order 2, h = 1e-3, tolerance 1e-10).
 use triad::mechanics::{step_state, Model, SolverSettings, State};
 
 #[path = "../tests/common/mod.rs"]
@@ -18,8 +18,9 @@ fn main() {
         "top" => common::heavy_top(),
         _ => common::double_pendulum(),
     };
+    let h: f64 = args.get(3).and_then(|x| x.parse().ok()).unwrap_or(1e-3);
     let s = SolverSettings {
-        max_step: 1e-3,
+        max_step: h,
         order: 2,
         tolerance: 1e-10,
         max_iterations: 20,
@@ -28,7 +29,7 @@ fn main() {
     let mut st = State::new(&m);
     let (mut it, mut fac) = (0, 0);
     for _ in 0..n {
-        let s = step_state(&m, &mut st, 1e-3).expect("step");
+        let s = step_state(&m, &mut st, h).expect("step");
         it += s.iterations;
         fac += s.factorizations;
     }

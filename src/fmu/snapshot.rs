@@ -2,12 +2,12 @@
 //! restores it, and (de)serialisation writes it as a versioned, pointer-free little-endian byte
 //! string, so a state can continue in another instance or another process bit-identically.
 //!
-//! Byte format, version 2 (all integers u32 LE, all reals f64 LE bit patterns):
+//! Byte format, version 1 (all integers u32 LE, all reals f64 LE bit patterns):
 //!
 //! | field | bytes |
 //! |---|---|
 //! | magic `TRIADFS\0` | 8 |
-//! | version = 2 (1 had one stage of predictor history) | 4 |
+//! | version = 1 | 4 |
 //! | GUID length n, GUID (UTF-8) | 4 + n |
 //! | mode code (`Mode` order) | 1 |
 //! | start time, stop-time flag (u8) and stop time, last successful time | 8 + 1 + 8 + 8 |
@@ -21,7 +21,7 @@ use super::status::{FmuError, Status};
 use crate::variables::Causality;
 
 const MAGIC: &[u8; 8] = b"TRIADFS\0";
-const VERSION: u32 = 2;
+const VERSION: u32 = 1;
 
 /// Everything that determines the future of an instance.
 #[derive(Clone, Debug, PartialEq)]

@@ -17,17 +17,16 @@ pub struct State {
     pub(crate) v: Vec<f64>,
     /// Low part of the velocities (double-double with `v`), 12 per body.
     pub(crate) v_lo: Vec<f64>,
-    /// Multiplier memory `λ/2` per active joint row of the last stage, then of the stage before
-    /// (2 per row; the Newton warm start extrapolates them).
+    /// Multiplier memory `λ/2` per active joint row (Newton warm start).
     pub(crate) lam: Vec<f64>,
     /// Unwrapped turn angles (one per rotational joint coordinate), rad.
     pub(crate) angles: Vec<f64>,
     /// Accumulated work of inputs minus damping dissipation, J.
     pub(crate) work: f64,
-    /// Predictor history: mean rates of the last two stages, 12 per body (`Work::hist`).
+    /// Predictor history: mean rates of the last stage, 6 per body.
     pub(crate) hist: Vec<f64>,
-    /// Sizes of the last two stages, s (0: none).
-    pub(crate) hprev: [f64; 2],
+    /// Size of the last stage, s (0: none).
+    pub(crate) hprev: f64,
     pub(crate) inputs: Vec<f64>,
     pub(crate) damping: Vec<f64>,
     pub(crate) stiffness: Vec<f64>,
@@ -48,11 +47,11 @@ impl State {
             q: model.q0.clone(),
             v: model.v0.clone(),
             v_lo: vec![0.0; model.v0.len()],
-            lam: vec![0.0; 2 * model.nrows],
+            lam: vec![0.0; model.nrows],
             angles: model.angles0.clone(),
             work: 0.0,
-            hist: vec![0.0; 12 * model.body_count()],
-            hprev: [0.0; 2],
+            hist: vec![0.0; 6 * model.body_count()],
+            hprev: 0.0,
             inputs: vec![0.0; model.inputs().len()],
             damping: def.joints.iter().map(|j| j.damping).collect(),
             stiffness: def.joints.iter().map(|j| j.stiffness).collect(),
@@ -149,7 +148,7 @@ impl State {
 
     /// Every number that determines the future of this state (time, q, v, multipliers used as
     /// the Newton start, inputs, tunable parameters, accumulated work, unwrapping memory), flat:
-    /// `[t, q.., v.., v_lo.., λ/2.., angles.., work, hist.., h_prev (2), inputs.., damping.., stiffness..]`.
+    /// `[t, q.., v.., v_lo.., λ/2.., angles.., work, hist.., h_prev, inputs.., damping.., stiffness..]`.
     #[must_use]
     pub fn snapshot(&self) -> Vec<f64> {
         let mut out = Vec::with_capacity(self.snapshot_len());
@@ -161,7 +160,7 @@ impl State {
         out.extend_from_slice(&self.angles);
         out.push(self.work);
         out.extend_from_slice(&self.hist);
-        out.extend_from_slice(&self.hprev);
+        out.push(self.hprev);
         out.extend_from_slice(&self.inputs);
         out.extend_from_slice(&self.damping);
         out.extend_from_slice(&self.stiffness);
@@ -169,7 +168,7 @@ impl State {
     }
 
     fn snapshot_len(&self) -> usize {
-        4 + self.q.len()
+        3 + self.q.len()
             + self.hist.len()
             + 2 * self.v.len()
             + self.lam.len()
@@ -206,12 +205,14 @@ impl State {
         let mut w = [0.0];
         take(&mut w);
         take(&mut self.hist);
-        take(&mut self.hprev);
+        let mut hp = [0.0];
+        take(&mut hp);
         take(&mut self.inputs);
         take(&mut self.damping);
         take(&mut self.stiffness);
         self.t = t[0];
         self.work = w[0];
+        self.hprev = hp[0];
         self.refresh_outputs(model);
         Ok(())
     }

@@ -1,9 +1,8 @@
 //! One energy–momentum step (order 2) or its triple-jump composition (order 4).
 //!
 //! A stage of size `h` solves the scaled EM equations (see `newton`) from the predictor
-//! `φ + h v̄`, `dᵢ ← cay(h ω̄) dᵢ` (mean rates extrapolated from the nodal ones and the last two
-//! stages', see `Extrapolation`), `μ = h² λ/2` extrapolated from the last two stages, then sets
-//! `v_{n+1} = (2/h)(q_{n+1} − qₙ) − vₙ`.
+//! `φ + h v̄`, `dᵢ ← cay(h ω̄) dᵢ` (mean rates extrapolated from the nodal ones and the previous
+//! stage's), `μ = h² λₙ/2`, then sets `v_{n+1} = (2/h)(q_{n+1} − qₙ) − vₙ`.
 //! Order 4 is `Φ_{γ₁h} ∘ Φ_{γ₂h} ∘ Φ_{γ₁h}` with `γ₁ = 1/(2 − 2^{1/3})`, `γ₂ = 1 − 2γ₁`
 //! (theory.md §4.8); every stage is itself an EM step, so the conservation laws hold exactly.
 //! All work happens on workspace copies; the state is written only after every stage converged.
@@ -15,7 +14,6 @@ use super::error::StepError;
 use super::model::Model;
 use super::newton::{evaluate, expm1_so3, resolve, solve, update, Held, Mode, Work};
 use super::state::State;
-use crate::math::Vec3;
 
 /// Statistics of one step.
 #[derive(Clone, Copy, Debug, Default, PartialEq)]
@@ -108,7 +106,7 @@ pub fn step_state(model: &Model, state: &mut State, h: f64) -> Result<StepStats,
 
 /// Largest contraction per iteration `|δₖ|/|δₖ₋₁|` with which chord iterations go on reusing
 /// the factors of the last Jacobian; a slower one assembles and factors a fresh Jacobian.
-const CHORD_RATE: f64 = 0.1;
+const CHORD_RATE: f64 = 1e-2;
 
 /// Largest scaled body update of the first (Newton) iteration after which chord iterations
 /// are tried (their contraction rate is about the size of that update).
@@ -154,19 +152,13 @@ fn robust_stage(
 /// One EM stage of size `h` (may be negative inside the composition) on the workspace.
 fn stage(model: &Model, ws: &mut Work, held: &Held, h: f64) -> Result<StepStats, StepError> {
     let nb = model.bodies.len();
-    // predictor: the mean rates (φ̇, ω) over the stage from a polynomial in time fitted to the
-    // nodal rates now and the mean rates of the last two stages (quadratic; linear with one
-    // stage of history or when a stage ran backwards, as inside the order-4 composition)
-    let [h1, h2] = ws.hprev;
-    let ex = Extrapolation::new(h, h1, h2);
+    // predictor: mean velocities over the stage extrapolated linearly in time from the nodal
+    // ones and the previous stage's means (first stage: the nodal ones), Cayley rotation
+    let ratio = if ws.hprev != 0.0 { h / ws.hprev } else { 0.0 };
     for b in 0..nb {
         let o = 12 * b;
         let vphi = read3(&ws.vn, o);
-        let vbar = ex.mean(
-            &vphi,
-            &read3(&ws.hist, 12 * b),
-            &read3(&ws.hist, 12 * b + 6),
-        );
+        let vbar = vphi + (vphi - read3(&ws.hist, 6 * b)) * ratio;
         let inc = vbar * h;
         write3(&mut ws.dq, o, &inc);
         write3(&mut ws.q, o, &(read3(&ws.qn, o) + inc));
@@ -175,11 +167,7 @@ fn stage(model: &Model, ws: &mut Work, held: &Held, h: f64) -> Result<StepStats,
             w += read3(&ws.qn, o + 3 + 3 * i).cross(&read3(&ws.vn, o + 3 + 3 * i));
         }
         w *= 0.5;
-        let wbar = ex.mean(
-            &w,
-            &read3(&ws.hist, 12 * b + 3),
-            &read3(&ws.hist, 12 * b + 9),
-        );
+        let wbar = w + (w - read3(&ws.hist, 6 * b + 3)) * ratio;
         // Cayley vector θ = h ω̄ ↔ rotation angle 2 atan(|θ|/2)
         let th = wbar * h;
         let n = th.norm();
@@ -196,16 +184,8 @@ fn stage(model: &Model, ws: &mut Work, held: &Held, h: f64) -> Result<StepStats,
             write3(&mut ws.q, o + 3 + 3 * i, &(dn + inc));
         }
     }
-    // multipliers: linear in time through the last two stages' values (at their midpoints)
-    let nr = ws.mu.len();
-    let slope = if h > 0.0 && h1 > 0.0 && h2 > 0.0 {
-        (h + h1) / (h1 + h2)
-    } else {
-        0.0
-    };
-    for k in 0..nr {
-        let (l1, l2) = (ws.lam[k], ws.lam[nr + k]);
-        ws.mu[k] = (l1 + (l1 - l2) * slope) * h * h;
+    for k in 0..ws.mu.len() {
+        ws.mu[k] = ws.lam[k] * h * h;
     }
     let tol = model.settings().tolerance;
     let maxit = model.settings().max_iterations;
@@ -309,22 +289,20 @@ fn stage(model: &Model, ws: &mut Work, held: &Held, h: f64) -> Result<StepStats,
         ws.qn[k] = ws.q[k];
     }
     let ih2 = 1.0 / (h * h);
-    ws.lam.copy_within(0..nr, nr);
-    for k in 0..nr {
+    for k in 0..ws.mu.len() {
         ws.lam[k] = ws.mu[k] * ih2;
     }
     ws.ang.copy_from_slice(&ws.ang1);
     ws.work += work;
-    // stage means for the next predictor: Δφ/h and θ/h; the previous ones move back
+    // stage means for the next predictor: Δφ/h and θ/h
     for b in 0..nb {
         let o = 12 * b;
-        ws.hist.copy_within(12 * b..12 * b + 6, 12 * b + 6);
         for k in 0..3 {
-            ws.hist[12 * b + k] = ws.dq[o + k] / h;
-            ws.hist[12 * b + 3 + k] = ws.theta[3 * b + k] / h;
+            ws.hist[6 * b + k] = ws.dq[o + k] / h;
+            ws.hist[6 * b + 3 + k] = ws.theta[3 * b + k] / h;
         }
     }
-    ws.hprev = [h, ws.hprev[0]];
+    ws.hprev = h;
     Ok(StepStats {
         iterations: it,
         factorizations,
@@ -338,44 +316,4 @@ fn two_sum(a: f64, b: f64) -> (f64, f64) {
     let s = a + b;
     let bb = s - a;
     (s, (a - (s - bb)) + (b - bb))
-}
-
-/// Extrapolation of a rate `p(τ)` (τ = 0 now) to its mean over the next stage `[0, h]` from its
-/// value `v` now and its means `m₁` over the last stage `[−h₁, 0]` and `m₂` over the one before
-/// `[−h₁ − h₂, −h₁]`: `p = v + aτ + bτ²` (error O(h³) in the mean, O(h⁴) in the predicted
-/// position), `p = v + aτ` with one stage of history or when a stage size is not positive, and
-/// `p = v` with none.
-struct Extrapolation {
-    /// Weights of `v`, `m₁`, `m₂` in the predicted mean.
-    w: [f64; 3],
-}
-
-impl Extrapolation {
-    fn new(h: f64, h1: f64, h2: f64) -> Self {
-        if h > 0.0 && h1 > 0.0 && h2 > 0.0 {
-            // mean of v + aτ + bτ² over [α, β]: v + a(α+β)/2 + b(α² + αβ + β²)/3
-            let avg = |al: f64, be: f64| (0.5 * (al + be), (al * al + al * be + be * be) / 3.0);
-            let (a1, b1) = avg(-h1, 0.0);
-            let (a2, b2) = avg(-h1 - h2, -h1);
-            let (a0, b0) = avg(0.0, h);
-            let det = a1 * b2 - a2 * b1;
-            // a = (d₁ b₂ − d₂ b₁)/det, b = (a₁ d₂ − a₂ d₁)/det with dᵢ = mᵢ − v
-            let c1 = (a0 * b2 - b0 * a2) / det;
-            let c2 = (b0 * a1 - a0 * b1) / det;
-            Self {
-                w: [1.0 - c1 - c2, c1, c2],
-            }
-        } else if h1 != 0.0 {
-            let r = h / h1;
-            Self {
-                w: [1.0 + r, -r, 0.0],
-            }
-        } else {
-            Self { w: [1.0, 0.0, 0.0] }
-        }
-    }
-
-    fn mean(&self, v: &Vec3, m1: &Vec3, m2: &Vec3) -> Vec3 {
-        v * self.w[0] + m1 * self.w[1] + m2 * self.w[2]
-    }
 }

@@ -15,18 +15,16 @@ pub(crate) struct Work {
     pub vlo: Vec<f64>,
     /// `a = (q − qₙ) − h vₙ` of the last evaluation (12 per body).
     pub acc: Vec<f64>,
-    /// Multiplier memory `λ/2` per active row of the last stage, then of the stage before
-    /// (2 per row; warm start `μ = h² λ/2` extrapolated linearly in time).
+    /// Multiplier memory `λ/2` per active row (warm start `μ = h² λ/2`).
     pub lam: Vec<f64>,
     /// Unwrapped turn angles at the stage start, rad.
     pub ang: Vec<f64>,
     /// Accumulated work at the stage start, J.
     pub work: f64,
-    /// Mean rates `(Δφ/h, θ/h)` of the last stage (first 6 per body) and of the stage before
-    /// (next 6), 12 per body (predictor history).
+    /// Mean rates of the last stage `(Δφ/h, θ/h)`, 6 per body (predictor history).
     pub hist: Vec<f64>,
-    /// Sizes of the last stage and of the one before, s (0: no history).
-    pub hprev: [f64; 2],
+    /// Size of the last stage, s (0: no history).
+    pub hprev: f64,
     /// Newton iterate.
     pub q: Vec<f64>,
     /// Increment `q − qₙ`, kept separately so that velocities do not suffer the cancellation
@@ -72,11 +70,11 @@ impl Work {
             vn: model.v0.clone(),
             vlo: vec![0.0; 12 * nb],
             acc: vec![0.0; 12 * nb],
-            lam: vec![0.0; 2 * nr],
+            lam: vec![0.0; nr],
             ang: model.angles0.clone(),
             work: 0.0,
-            hist: vec![0.0; 12 * nb],
-            hprev: [0.0; 2],
+            hist: vec![0.0; 6 * nb],
+            hprev: 0.0,
             q: model.q0.clone(),
             dq: vec![0.0; 12 * nb],
             qbar: model.q0.clone(),
