@@ -6,12 +6,23 @@
 
 mod common;
 use common::*;
-use triad::math::Vec3;
-use triad::mechanics::{step, ModelDef};
+use triad::math::{Mat3, Vec3};
+use triad::mechanics::{step, ModelDef, SolverSettings};
 
 /// Runs `n` steps; returns the largest relative drift of E and of the chosen L components.
 fn drift(def: &ModelDef, h: f64, order: u8, n: usize, l_mask: Vec3) -> (f64, f64, f64, usize) {
-    let (m, mut s) = build(def, settings(h, order));
+    drift_with(def, settings(h, order), n, l_mask)
+}
+
+/// [`drift`] with explicit solver settings.
+fn drift_with(
+    def: &ModelDef,
+    settings: SolverSettings,
+    n: usize,
+    l_mask: Vec3,
+) -> (f64, f64, f64, usize) {
+    let h = settings.max_step;
+    let (m, mut s) = build(def, settings);
     let e0 = s.outputs().energy;
     let l0 = s.outputs().l.component_mul(&l_mask);
     let escale = e0.abs().max(kinetic_scale(&s));
@@ -42,6 +53,33 @@ fn free_body_def() -> ModelDef {
         false,
         false,
     )
+}
+
+/// The peers' Dzhanibekov body (inertia diag(1, 2, 3), ω = (0.05, 2, 0.05) rad/s: it flips
+/// about its intermediate axis) at h = 0.02 and 0.01, where Newton takes chord iterations
+/// (reused factors): their acceptance must leave no more than round-off (an acceptance 100×
+/// looser drifted by 2.6e-12 through the flip at h = 0.02).
+#[test]
+fn flipping_body_with_chord_iterations() {
+    let def = free_body(
+        1.0,
+        Mat3::from_diagonal(&Vec3::new(1.0, 2.0, 3.0)),
+        Mat3::identity(),
+        Vec3::new(0.05, 2.0, 0.05),
+        Vec3::zeros(),
+        false,
+        false,
+    );
+    for h in [0.02, 0.01] {
+        // the default Newton tolerance (1e-10), which the acceptance bound scales with
+        let s = SolverSettings {
+            max_step: h,
+            ..SolverSettings::default()
+        };
+        let (de, dl, _, _) = drift_with(&def, s, (10.0 / h) as usize, Vec3::new(1.0, 1.0, 1.0));
+        eprintln!("flipping body h = {h}: dE {de:e} dL {dl:e}");
+        assert!(de < tol(2e-13) && dl < tol(2e-13), "h = {h}: {de:e} {dl:e}");
+    }
 }
 
 #[test]
