@@ -253,8 +253,16 @@ fn stage(model: &Model, ws: &mut Work, held: &Held, h: f64) -> Result<StepStats,
             rates[0] = rates[0].min(upd / prev_upd);
             rates[1] = rates[1].min(dmu / prev_dmu);
             let [rb, rm] = rates;
-            if rb <= 1e-2 && rb * upd <= CHORD_ACCEPT * tol && rm.min(1.0) * dmu <= 1e-2 * tol {
+            let mu_ok = rm.min(1.0) * dmu <= 1e-2 * tol;
+            if rb <= 1e-2 && rb * upd <= CHORD_ACCEPT * tol && mu_ok {
                 last_res = (rb * upd).max(rm * dmu);
+                break;
+            }
+            // round-off floor: after contracting well the updates stop shrinking at a size
+            // set by the number of bodies; a fresh Newton iteration would land on the same
+            // floor, so the iterate is accepted as Newton's would be at that size
+            if rb <= 1e-2 && upd >= 0.5 * prev_upd && upd <= 1e-2 * tol && mu_ok {
+                last_res = upd.max(rm * dmu);
                 break;
             }
         }
