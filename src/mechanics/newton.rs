@@ -259,26 +259,28 @@ pub(crate) fn evaluate(
                         }
                     }
                     DofRt::Turn(tr) => {
-                        // actuator: the consistent torque ±act n̄, its work act·δ
-                        let nbar = tr.axis.eval(&qa_bar, &qb_bar);
-                        let th_b = read3(&ws.theta, 3 * bb);
-                        let th_a = a.map_or(Vec3::zeros(), |a| read3(&ws.theta, 3 * a));
-                        let delta = nbar.dot(&(th_b - th_a));
-                        work += act * delta;
-                        push_torque(&mut ws.mom, bb, a, &(nbar * (hh * act)));
-                        if jac && act != 0.0 {
-                            let jb = linvec_jac(&tr.axis.b, &d_b);
-                            let ja = linvec_jac(&tr.axis.a, &d_a);
-                            torque_jac(
-                                &mut x_bb,
-                                &mut x_ba,
-                                &mut x_ab,
-                                &mut x_aa,
-                                hh * act,
-                                &jb,
-                                &ja,
-                                a.is_some(),
-                            );
+                        // actuator: the consistent torque ±act n̄, its work act·δ (nothing to
+                        // do for an unactuated or idle joint, the common case in a chain)
+                        if act != 0.0 {
+                            let nbar = tr.axis.eval(&qa_bar, &qb_bar);
+                            let th_b = read3(&ws.theta, 3 * bb);
+                            let th_a = a.map_or(Vec3::zeros(), |a| read3(&ws.theta, 3 * a));
+                            work += act * nbar.dot(&(th_b - th_a));
+                            push_torque(&mut ws.mom, bb, a, &(nbar * (hh * act)));
+                            if jac {
+                                let jb = linvec_jac(&tr.axis.b, &d_b);
+                                let ja = linvec_jac(&tr.axis.a, &d_a);
+                                torque_jac(
+                                    &mut x_bb,
+                                    &mut x_ba,
+                                    &mut x_ab,
+                                    &mut x_aa,
+                                    hh * act,
+                                    &jb,
+                                    &ja,
+                                    a.is_some(),
+                                );
+                            }
                         }
                         // the angle step, and the spring and damper as the discrete gradient
                         // F = f β (c̄ ∇s(q̄) − s̄ ∇c(q̄)) of `turn`
