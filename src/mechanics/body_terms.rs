@@ -12,9 +12,9 @@ use super::work::{Held, Work};
 use crate::math::{Mat3, Vec3};
 
 /// Projects the node residual `ws.rn` of every body onto its six rows (right-hand side `−r`
-/// into the tree blocks or the dense system), adds the body torques (their work into `work`)
+/// into the tree blocks or the dense system), adds the body torques 
 /// and, in [`Mode::Full`], the diagonal Jacobian blocks. Returns the largest scaled body
-/// residual. [`Mode::Final`] only adds the work of the body torques (returns 0).
+/// residual.
 #[allow(clippy::too_many_arguments)]
 pub(crate) fn project_bodies(
     model: &Model,
@@ -23,18 +23,7 @@ pub(crate) fn project_bodies(
     hh: f64,
     mode: Mode,
     nd: usize,
-    work: &mut f64,
 ) -> f64 {
-    if mode == Mode::Final {
-        // same summation order as below
-        for b in 0..model.bodies.len() {
-            for &(tb, at) in model.body_torques.iter().filter(|t| t.0 == b) {
-                let m = Vec3::new(held.inputs[at], held.inputs[at + 1], held.inputs[at + 2]);
-                *work += m.dot(&read3(&ws.theta, 3 * tb));
-            }
-        }
-        return 0.0;
-    }
     let jac = mode == Mode::Full;
     let mut res = 0.0_f64;
     for b in 0..model.bodies.len() {
@@ -63,7 +52,6 @@ pub(crate) fn project_bodies(
             for k in 0..3 {
                 r[3 + k] -= hh * applied[k];
             }
-            *work += m.dot(&read3(&ws.theta, 3 * b));
         }
         let fs = 1.0 / (br.mass * model.lc);
         let ms = 1.0 / (br.e.trace().abs() + 0.5 * br.e.norm());

@@ -20,6 +20,7 @@ pub mod constraint;
 pub mod def;
 mod dense;
 mod error;
+mod finish;
 mod increment;
 pub mod joint;
 mod kernels;

@@ -42,7 +42,7 @@ use crate::math::Vec3;
 /// What one call of [`evaluate`] computes.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub(crate) enum Mode {
-    /// Residual (all rows, norms, work, right-hand side `−r`) and the analytic Jacobian: clears
+    /// Residual (all rows, norms, right-hand side `−r`) and the analytic Jacobian: clears
     /// and fills the tree blocks (`d`, `u`, `l`, `r`) or the dense system (`dense`, `drhs`).
     Full,
     /// Everything [`Mode::Full`] computes for the right-hand side, bit for bit, but no
@@ -50,14 +50,11 @@ pub(crate) enum Mode {
     /// `drhs`); the matrices `d`, `u`, `l` and `dense` are left untouched (they may hold the
     /// factors of an earlier `Full` iteration, for chord iterations).
     Residual,
-    /// Final pass at the converged iterate: no constraint rows; computes `a`, `θ`, the
-    /// unwrapped angles and the work only.
-    Final,
 }
 
 /// Evaluates the residual at the iterate `ws.q` (and, in [`Mode::Full`], the Jacobian) into
-/// the sink; the right-hand side stored is `−r`. Also returns the step's discrete work in
-/// `work_out`.
+/// the sink; the right-hand side stored is `−r`. The work account, the angles and the rotation
+/// increments of the accepted iterate are `finish`'s.
 #[allow(clippy::too_many_lines)]
 pub(crate) fn evaluate(
     model: &Model,
@@ -65,15 +62,11 @@ pub(crate) fn evaluate(
     held: &Held,
     h: f64,
     mode: Mode,
-    work_out: &mut f64,
 ) -> Norms {
     let jac = mode == Mode::Full;
-    // the final pass (no Jacobian) only needs a, θ, the unwrapped angles and the work
-    let final_pass = mode == Mode::Final;
     let nb = model.bodies.len();
     let hh = 0.5 * h * h;
     let g = model.def().gravity;
-    let mut work = 0.0;
     for k in 0..ws.q.len() {
         ws.qbar[k] = ws.qn[k] + 0.5 * ws.dq[k];
     }
@@ -86,13 +79,10 @@ pub(crate) fn evaluate(
         // the matrices may hold factors: only the right-hand sides are rebuilt
         Mode::Residual if model.dense => ws.drhs.fill(0.0),
         Mode::Residual => ws.blocks.iter_mut().for_each(|b| b.r.fill(0.0)),
-        Mode::Final => {}
     }
     // body inertia and applied forces, node form
     for b in 0..nb {
         let br = &model.bodies[b];
-        let qn = body_nodes(&ws.qn, b);
-        let q = body_nodes(&ws.q, b);
         // a = Δq − h vₙ with one rounding (fused multiply-add) plus the low part of vₙ
         for k in 12 * b..12 * b + 12 {
             ws.acc[k] = (-h).mul_add(ws.vn[k], ws.dq[k]) - h * ws.vlo[k];
@@ -106,8 +96,6 @@ pub(crate) fn evaluate(
         for k in 0..4 {
             write3(&mut ws.rn, 12 * b + 3 * k, &r[k]);
         }
-        let th = rotation_increment(&qn, &q);
-        write3(&mut ws.theta, 3 * b, &th);
         if jac {
             let c = &mut ws.cbody[b];
             c.fill(0.0);
@@ -125,7 +113,6 @@ pub(crate) fn evaluate(
         let f = Vec3::new(held.inputs[at], held.inputs[at + 1], held.inputs[at + 2]);
         let r = read3(&ws.rn, 12 * b) - f * hh;
         write3(&mut ws.rn, 12 * b, &r);
-        work += f.dot(&read3(&ws.dq, 12 * b));
     }
     // joint rows: μ ∇g(q̄) into R̃, g(q) residual, Jacobian columns/rows and node couplings
     let mut res = 0.0_f64;
@@ -186,7 +173,7 @@ pub(crate) fn evaluate(
             };
             let mut fa = [Vec3::zeros(); 4];
             let mut fb = [Vec3::zeros(); 4];
-            for (k, sr) in jt.sparse.iter().enumerate().filter(|_| !final_pass) {
+            for (k, sr) in jt.sparse.iter().enumerate() {
                 let mu = ws.mu[jt.row0 + k];
                 // compact ∇g(q̄) over the row's non-zero nodes (see `SparseRow`)
                 let grad = sr.grad_at(&qa_bar, &qb_bar, &mut buf);
@@ -238,7 +225,6 @@ pub(crate) fn evaluate(
                         let s1 = row.eval(&qa, &qb);
                         let ds = s1 - s0;
                         let coef = act - 0.5 * k_s * (s0 + s1) - c_d * ds / h;
-                        work += act * ds - c_d * ds * ds / h;
                         let grad =
                             add_row(row, -hh * coef, &mut fa, &mut fb, &mut ws.cbody, &mut cab);
                         if jac && (k_s != 0.0 || c_d != 0.0) {
@@ -263,9 +249,6 @@ pub(crate) fn evaluate(
                         // do for an unactuated or idle joint, the common case in a chain)
                         if act != 0.0 {
                             let nbar = tr.axis.eval(&qa_bar, &qb_bar);
-                            let th_b = read3(&ws.theta, 3 * bb);
-                            let th_a = a.map_or(Vec3::zeros(), |a| read3(&ws.theta, 3 * a));
-                            work += act * nbar.dot(&(th_b - th_a));
                             push_torque(&mut ws.mom, bb, a, &(nbar * (hh * act)));
                             if jac {
                                 let jb = linvec_jac(&tr.axis.b, &d_b);
@@ -286,7 +269,7 @@ pub(crate) fn evaluate(
                         // F = f β (c̄ ∇s(q̄) − s̄ ∇c(q̄)) of `turn`
                         let t0 = ws.ang[turn];
                         let loaded = k_s != 0.0 || c_d != 0.0;
-                        if loaded || final_pass {
+                        if loaded {
                             let dqa = a.map_or(zero, |a| body_nodes(&ws.dq, a));
                             let dqb = body_nodes(&ws.dq, bb);
                             let qa_n = a.map_or(zero, |a| body_nodes(&ws.qn, a));
@@ -295,85 +278,74 @@ pub(crate) fn evaluate(
                             let ds = row_increment(&tr.sin, &qa_bar, &qb_bar, &dqa, &dqb);
                             let dc = row_increment(&tr.cos, &qa_bar, &qb_bar, &dqa, &dqb);
                             let st = turn_step([s0, c0], [ds, dc], t0, k_s, c_d, h);
-                            ws.ang1[turn] = t0 + st.dt;
-                            if loaded {
-                                work -= c_d * st.dt * st.dt / h;
-                                let gs = add_row(
-                                    &tr.sin,
-                                    -hh * st.fs,
-                                    &mut fa,
-                                    &mut fb,
-                                    &mut ws.cbody,
-                                    &mut cab,
-                                );
-                                let gc = add_row(
-                                    &tr.cos,
-                                    -hh * st.fc,
-                                    &mut fa,
-                                    &mut fb,
-                                    &mut ws.cbody,
-                                    &mut cab,
-                                );
-                                if jac {
-                                    // d(−hh f)/dx through (s₁, c₁): Σᵢⱼ −hh ∂fᵢ/∂j₁ P̄ᵀ∇i(q̄) ⊗ ∇j(q)Q
-                                    let mut g1 = [Vec3::zeros(); 8];
-                                    tr.sin.gradient(&qa, &qb, &mut g1);
-                                    let (rs_b, rs_a) =
-                                        (row_q(&g1[4..], &d_b), row_q(&g1[..4], &d_a));
-                                    tr.cos.gradient(&qa, &qb, &mut g1);
-                                    let (rc_b, rc_a) =
-                                        (row_q(&g1[4..], &d_b), row_q(&g1[..4], &d_a));
-                                    let mix = |ws_: f64, wc: f64, rs: &[f64; 6], rc: &[f64; 6]| {
-                                        std::array::from_fn::<f64, 6, _>(|i| {
-                                            -hh * (ws_ * rs[i] + wc * rc[i])
-                                        })
-                                    };
-                                    let j = st.jac;
-                                    let (ms_b, mc_b) = (
-                                        mix(j[0], j[1], &rs_b, &rc_b),
-                                        mix(j[2], j[3], &rs_b, &rc_b),
+                            let gs = add_row(
+                                &tr.sin,
+                                -hh * st.fs,
+                                &mut fa,
+                                &mut fb,
+                                &mut ws.cbody,
+                                &mut cab,
+                            );
+                            let gc = add_row(
+                                &tr.cos,
+                                -hh * st.fc,
+                                &mut fa,
+                                &mut fb,
+                                &mut ws.cbody,
+                                &mut cab,
+                            );
+                            if jac {
+                                // d(−hh f)/dx through (s₁, c₁): Σᵢⱼ −hh ∂fᵢ/∂j₁ P̄ᵀ∇i(q̄) ⊗ ∇j(q)Q
+                                let mut g1 = [Vec3::zeros(); 8];
+                                tr.sin.gradient(&qa, &qb, &mut g1);
+                                let (rs_b, rs_a) = (row_q(&g1[4..], &d_b), row_q(&g1[..4], &d_a));
+                                tr.cos.gradient(&qa, &qb, &mut g1);
+                                let (rc_b, rc_a) = (row_q(&g1[4..], &d_b), row_q(&g1[..4], &d_a));
+                                let mix = |ws_: f64, wc: f64, rs: &[f64; 6], rc: &[f64; 6]| {
+                                    std::array::from_fn::<f64, 6, _>(|i| {
+                                        -hh * (ws_ * rs[i] + wc * rc[i])
+                                    })
+                                };
+                                let j = st.jac;
+                                let (ms_b, mc_b) =
+                                    (mix(j[0], j[1], &rs_b, &rc_b), mix(j[2], j[3], &rs_b, &rc_b));
+                                let (cs_b, cc_b) =
+                                    (project(&gs[4..], &dbar_b), project(&gc[4..], &dbar_b));
+                                outer(&mut x_bb, 1.0, &cs_b, &ms_b);
+                                outer(&mut x_bb, 1.0, &cc_b, &mc_b);
+                                if a.is_some() {
+                                    let (ms_a, mc_a) = (
+                                        mix(j[0], j[1], &rs_a, &rc_a),
+                                        mix(j[2], j[3], &rs_a, &rc_a),
                                     );
-                                    let (cs_b, cc_b) =
-                                        (project(&gs[4..], &dbar_b), project(&gc[4..], &dbar_b));
-                                    outer(&mut x_bb, 1.0, &cs_b, &ms_b);
-                                    outer(&mut x_bb, 1.0, &cc_b, &mc_b);
-                                    if a.is_some() {
-                                        let (ms_a, mc_a) = (
-                                            mix(j[0], j[1], &rs_a, &rc_a),
-                                            mix(j[2], j[3], &rs_a, &rc_a),
-                                        );
-                                        let (cs_a, cc_a) = (
-                                            project(&gs[..4], &dbar_a),
-                                            project(&gc[..4], &dbar_a),
-                                        );
-                                        outer(&mut x_ba, 1.0, &cs_b, &ms_a);
-                                        outer(&mut x_ba, 1.0, &cc_b, &mc_a);
-                                        outer(&mut x_ab, 1.0, &cs_a, &ms_b);
-                                        outer(&mut x_ab, 1.0, &cc_a, &mc_b);
-                                        outer(&mut x_aa, 1.0, &cs_a, &ms_a);
-                                        outer(&mut x_aa, 1.0, &cc_a, &mc_a);
-                                    }
+                                    let (cs_a, cc_a) =
+                                        (project(&gs[..4], &dbar_a), project(&gc[..4], &dbar_a));
+                                    outer(&mut x_ba, 1.0, &cs_b, &ms_a);
+                                    outer(&mut x_ba, 1.0, &cc_b, &mc_a);
+                                    outer(&mut x_ab, 1.0, &cs_a, &ms_b);
+                                    outer(&mut x_ab, 1.0, &cc_a, &mc_b);
+                                    outer(&mut x_aa, 1.0, &cs_a, &ms_a);
+                                    outer(&mut x_aa, 1.0, &cc_a, &mc_a);
                                 }
                             }
-                        } else {
-                            ws.ang1[turn] = t0;
                         }
                         turn += 1;
                     }
                 }
             }
             if let Some(axes) = &jt.sph_axes {
-                let th_b = read3(&ws.theta, 3 * bb);
-                let th_a = a.map_or(Vec3::zeros(), |a| read3(&ws.theta, 3 * a));
+                // relative rotation increment θᴮ − θᴬ of the two bodies
+                let th_b = rotation_increment(&body_nodes(&ws.qn, bb), &qb);
+                let th_a = a.map_or(Vec3::zeros(), |a| {
+                    rotation_increment(&body_nodes(&ws.qn, a), &qa)
+                });
                 let rel = th_b - th_a;
                 let mut tv = -rel * (c_d / h);
-                work -= c_d * rel.norm_squared() / h;
                 for (k, ax) in axes.iter().enumerate() {
                     let act = jt.input.map_or(0.0, |i| held.inputs[i + k]);
                     if act != 0.0 {
                         let abar = ax.eval(&qa_bar, &qb_bar);
                         tv += abar * act;
-                        work += act * abar.dot(&rel);
                         if jac {
                             let jb = linvec_jac(&ax.b, &d_b);
                             let ja = linvec_jac(&ax.a, &d_a);
@@ -412,18 +384,16 @@ pub(crate) fn evaluate(
                     }
                 }
             }
-            // node forces of this joint into R̃ (the final pass does not use R̃)
-            if !final_pass {
-                if let Some(a) = a {
-                    for k in 0..4 {
-                        let v = read3(&ws.rn, 12 * a + 3 * k) + fa[k];
-                        write3(&mut ws.rn, 12 * a + 3 * k, &v);
-                    }
-                }
+            // node forces of this joint into R̃
+            if let Some(a) = a {
                 for k in 0..4 {
-                    let v = read3(&ws.rn, 12 * bb + 3 * k) + fb[k];
-                    write3(&mut ws.rn, 12 * bb + 3 * k, &v);
+                    let v = read3(&ws.rn, 12 * a + 3 * k) + fa[k];
+                    write3(&mut ws.rn, 12 * a + 3 * k, &v);
                 }
+            }
+            for k in 0..4 {
+                let v = read3(&ws.rn, 12 * bb + 3 * k) + fb[k];
+                write3(&mut ws.rn, 12 * bb + 3 * k, &v);
             }
             if jac {
                 for (x, y) in ws.xbody[bb].iter_mut().zip(&x_bb) {
@@ -450,8 +420,7 @@ pub(crate) fn evaluate(
     }
     ws.dense = sink_dense;
     ws.blocks = sink_blocks;
-    res = res.max(project_bodies(model, ws, held, hh, mode, nd, &mut work));
-    *work_out = work;
+    res = res.max(project_bodies(model, ws, held, hh, mode, nd));
     Norms { res }
 }
 

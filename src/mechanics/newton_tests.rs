@@ -106,9 +106,8 @@ fn sample() -> ModelDef {
 }
 
 fn residual(model: &Model, ws: &mut Work, held: &Held, h: f64) -> Vec<f64> {
-    let mut w = 0.0;
-    // the Jacobian pass also assembles the full residual (the final pass skips the rows)
-    evaluate(model, ws, held, h, Mode::Full, &mut w);
+    // the Jacobian pass also assembles the full residual
+    evaluate(model, ws, held, h, Mode::Full);
     ws.drhs.iter().map(|x| -x).collect()
 }
 
@@ -168,8 +167,7 @@ fn assert_jacobian(def: &ModelDef, stiffness: &[f64], damping: &[f64], scale: f6
     let base_q = ws.q.clone();
     let base_dq = ws.dq.clone();
     let base_mu = ws.mu.clone();
-    let mut w = 0.0;
-    evaluate(&model, &mut ws, &held, h, Mode::Full, &mut w);
+    evaluate(&model, &mut ws, &held, h, Mode::Full);
     let jac = ws.dense.clone();
     let n = ws.drhs.len();
     let eps = 1e-6;
@@ -216,15 +214,13 @@ fn residual_mode_matches_full_and_keeps_matrices() {
         };
         let h = 0.05;
         // a nontrivial iterate: a first Newton update from the start, multipliers
-        let mut w = 0.0;
-        evaluate(&model, &mut ws, &held, h, Mode::Full, &mut w);
+        evaluate(&model, &mut ws, &held, h, Mode::Full);
         assert!(solve(&model, &mut ws));
         update(&model, &mut ws);
         for (k, m) in ws.mu.iter_mut().enumerate() {
             *m = 0.01 * (k as f64 + 1.0).sin();
         }
-        let (mut w_full, mut w_res) = (0.0, 0.0);
-        let full = evaluate(&model, &mut ws, &held, h, Mode::Full, &mut w_full);
+        let full = evaluate(&model, &mut ws, &held, h, Mode::Full);
         let r_full: Vec<Vec<f64>> = ws.blocks.iter().map(|b| b.r.to_vec()).collect();
         let d_full = ws.drhs.clone();
         for b in &mut ws.blocks {
@@ -235,9 +231,8 @@ fn residual_mode_matches_full_and_keeps_matrices() {
         }
         ws.dense.fill(SENTINEL);
         ws.drhs.fill(-SENTINEL);
-        let res = evaluate(&model, &mut ws, &held, h, Mode::Residual, &mut w_res);
+        let res = evaluate(&model, &mut ws, &held, h, Mode::Residual);
         assert_eq!(res.res.to_bits(), full.res.to_bits(), "dense {dense}");
-        assert_eq!(w_res.to_bits(), w_full.to_bits(), "dense {dense}");
         let bits = |v: &[f64]| v.iter().map(|x| x.to_bits()).collect::<Vec<_>>();
         if dense {
             assert_eq!(bits(&ws.drhs), bits(&d_full));

@@ -11,6 +11,7 @@
 
 use super::assemble::{read3, write3};
 use super::error::StepError;
+use super::finish::finish;
 use super::model::Model;
 use super::newton::{evaluate, expm1_so3, resolve, solve, update, Held, Mode, Work};
 use super::state::State;
@@ -192,7 +193,6 @@ fn stage(model: &Model, ws: &mut Work, held: &Held, h: f64) -> Result<StepStats,
     }
     let tol = model.settings().tolerance;
     let maxit = model.settings().max_iterations;
-    let mut work = 0.0;
     let mut it = 0;
     let mut last_res: f64;
     let mut prev_full = f64::INFINITY;
@@ -207,7 +207,7 @@ fn stage(model: &Model, ws: &mut Work, held: &Held, h: f64) -> Result<StepStats,
     loop {
         it += 1;
         let mode = if fresh { Mode::Full } else { Mode::Residual };
-        let n = evaluate(model, ws, held, h, mode, &mut work);
+        let n = evaluate(model, ws, held, h, mode);
         if !n.res.is_finite() {
             return Err(StepError::NonFinite("state"));
         }
@@ -287,7 +287,7 @@ fn stage(model: &Model, ws: &mut Work, held: &Held, h: f64) -> Result<StepStats,
         fresh = slow || it + 1 >= maxit;
     }
     // work and unwrapped angles at the converged iterate
-    let _ = evaluate(model, ws, held, h, Mode::Final, &mut work);
+    let work = finish(model, ws, held, h);
     if !work.is_finite() || ws.acc.iter().any(|x| !x.is_finite()) {
         return Err(StepError::NonFinite("state"));
     }
