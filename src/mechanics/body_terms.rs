@@ -12,7 +12,7 @@ use super::work::{Held, Work};
 use crate::math::{Mat3, Vec3};
 
 /// Projects the node residual `ws.rn` of every body onto its six rows (right-hand side `−r`
-/// into the tree blocks or the dense system), adds the body torques 
+/// into the tree blocks or the dense system), adds the body torques
 /// and, in [`Mode::Full`], the diagonal Jacobian blocks. Returns the largest scaled body
 /// residual.
 #[allow(clippy::too_many_arguments)]
@@ -53,8 +53,7 @@ pub(crate) fn project_bodies(
                 r[3 + k] -= hh * applied[k];
             }
         }
-        let fs = 1.0 / (br.mass * model.lc);
-        let ms = 1.0 / (br.e.trace().abs() + 0.5 * br.e.norm());
+        let (fs, ms) = (br.fs, br.ms);
         for k in 0..3 {
             res = res.max((r[k] * fs).abs()).max((r[3 + k] * ms).abs());
         }

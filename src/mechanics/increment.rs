@@ -69,9 +69,7 @@ pub(crate) fn update(model: &Model, ws: &mut Work) -> (f64, f64) {
     let mut dmu = 0.0_f64;
     for jt in &model.joints {
         let br = &model.bodies[jt.child];
-        let fs = 1.0 / (br.mass * model.lc);
-        let ms = model.lc.max(1.0) / (br.e.trace().abs() + 0.5 * br.e.norm());
-        let scale = fs.max(ms);
+        let scale = br.fs.max(model.lc.max(1.0) * br.ms);
         for k in 0..jt.rows.len() {
             let dm = if model.dense {
                 ws.drhs[6 * nb + jt.row0 + k]

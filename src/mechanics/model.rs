@@ -57,6 +57,10 @@ pub(crate) struct BodyRt {
     pub e: Mat3,
     /// Centre of mass in the body frame, m.
     pub com: Vec3,
+    /// Residual scale of the body's force rows `1/(m·lc)` (1/N·s²… per the h²/2 scaling).
+    pub fs: f64,
+    /// Residual scale of the body's moment rows `1/(|tr E| + ½|E|)` (1/(kg·m²)).
+    pub ms: f64,
 }
 
 /// A joint coordinate that loads act on.
@@ -237,6 +241,8 @@ impl Model {
                 mass: b.mass,
                 e,
                 com: b.com,
+                fs: 0.0,
+                ms: 1.0 / (e.trace().abs() + 0.5 * e.norm()),
             });
         }
         let lc = bodies
@@ -244,6 +250,9 @@ impl Model {
             .map(|b| (b.e.trace().abs() / b.mass).sqrt() + b.com.norm())
             .fold(0.0_f64, f64::max)
             .max(1e-6);
+        for b in &mut bodies {
+            b.fs = 1.0 / (b.mass * lc);
+        }
         let mut model = Self {
             def: def.clone(),
             settings,

@@ -56,13 +56,7 @@ pub(crate) enum Mode {
 /// the sink; the right-hand side stored is `−r`. The work account, the angles and the rotation
 /// increments of the accepted iterate are `finish`'s.
 #[allow(clippy::too_many_lines)]
-pub(crate) fn evaluate(
-    model: &Model,
-    ws: &mut Work,
-    held: &Held,
-    h: f64,
-    mode: Mode,
-) -> Norms {
+pub(crate) fn evaluate(model: &Model, ws: &mut Work, held: &Held, h: f64, mode: Mode) -> Norms {
     let jac = mode == Mode::Full;
     let nb = model.bodies.len();
     let hh = 0.5 * h * h;

@@ -70,14 +70,11 @@ impl Block {
 
     /// Zeroes the used parts of the matrices and the right-hand side.
     pub fn clear(&mut self) {
+        // whole rows (stride NMAX): one contiguous fill per matrix instead of one per row
         let n = self.n;
-        for i in 0..n {
-            self.d[i * NMAX..i * NMAX + n].fill(0.0);
-        }
+        self.d[..n * NMAX].fill(0.0);
         self.u[..n * 6].fill(0.0);
-        for i in 0..6 {
-            self.l[i * NMAX..i * NMAX + n].fill(0.0);
-        }
+        self.l.fill(0.0);
         self.r.fill(0.0);
     }
 }
