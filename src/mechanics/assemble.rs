@@ -231,16 +231,21 @@ pub(crate) fn unwrap(prev: f64, raw: f64) -> f64 {
 }
 
 /// Writes `v` to `x[at..at + 3]`.
+#[inline]
 pub(crate) fn write3(x: &mut [f64], at: usize, v: &Vec3) {
-    x[at] = v.x;
-    x[at + 1] = v.y;
-    x[at + 2] = v.z;
+    // one bounds check for the three entries
+    let s = &mut x[at..at + 3];
+    s[0] = v.x;
+    s[1] = v.y;
+    s[2] = v.z;
 }
 
 /// Reads `x[at..at + 3]`.
 #[must_use]
+#[inline]
 pub(crate) fn read3(x: &[f64], at: usize) -> Vec3 {
-    Vec3::new(x[at], x[at + 1], x[at + 2])
+    let s = &x[at..at + 3];
+    Vec3::new(s[0], s[1], s[2])
 }
 
 /// Joint coordinates and rates at the nodes; turn coordinates take the unwrapped `angles`

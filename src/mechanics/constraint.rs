@@ -41,6 +41,8 @@ pub type Nodes = [Vec3; NODES];
 /// Reads the four nodes of a body from its 12 coordinates.
 #[must_use]
 pub fn nodes(q: &[f64]) -> Nodes {
+    // one bounds check for the twelve entries
+    let q = &q[..12];
     [
         Vec3::new(q[0], q[1], q[2]),
         Vec3::new(q[3], q[4], q[5]),
