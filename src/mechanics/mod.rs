@@ -23,6 +23,7 @@ mod error;
 mod finish;
 mod increment;
 pub mod joint;
+mod joint_loads;
 mod kernels;
 pub mod kinematics;
 pub mod loops;
