@@ -1,6 +1,8 @@
 //! Callgrind driver of the core step: `cargo build --profile profiling --example step_profile`,
 //! then `valgrind --tool=callgrind target/profiling/examples/step_profile dp 2000` (or
-//! `chain100 200`; an optional third argument is the step size, default 1e-3). Same settings as `benches/step.rs` (order 2, h = 1e-3, tolerance 1e-10).
+//! `chain100 200`; an optional third argument is the step size, default 1e-3). Also prints the
+//! wall-clock time per step of the run (release build: `cargo run --release --example
+//! step_profile chain1000 2000`, the whole 2 s run of the peers' protocol). Same settings as `benches/step.rs` (order 2, h = 1e-3, tolerance 1e-10).
 use triad::mechanics::{step_state, Model, SolverSettings, State};
 
 #[path = "../tests/common/mod.rs"]
@@ -28,13 +30,15 @@ fn main() {
     let m = Model::new(&def, s).expect("model");
     let mut st = State::new(&m);
     let (mut it, mut fac) = (0, 0);
+    let t0 = std::time::Instant::now();
     for _ in 0..n {
         let s = step_state(&m, &mut st, h).expect("step");
         it += s.iterations;
         fac += s.factorizations;
     }
+    let us = t0.elapsed().as_secs_f64() * 1e6 / n as f64;
     println!(
-        "{which}: {n} steps, {:.3} iterations ({:.3} with a fresh Jacobian) per step",
+        "{which}: {n} steps, {:.3} iterations ({:.3} with a fresh Jacobian) per step, {us:.2} µs per step",
         it as f64 / n as f64,
         fac as f64 / n as f64
     );
