@@ -261,7 +261,14 @@ pub fn chain_loop(n: usize, to: Option<usize>, stiffness: f64, damping: f64) -> 
     let end = Vec3::new(0.0, 0.0, -0.25);
     let p_end = oe + re * end;
     let (o_to, r_to) = to.map_or((Vec3::zeros(), Mat3::identity()), pose);
-    let mut close = joint("close", JointType::Revolute, to, n - 1, Vec3::zeros(), Vec3::x());
+    let mut close = joint(
+        "close",
+        JointType::Revolute,
+        to,
+        n - 1,
+        Vec3::zeros(),
+        Vec3::x(),
+    );
     close.parent_frame = Frame {
         translation: r_to.transpose() * (p_end - o_to),
         rotation: r_to.transpose() * re,
