@@ -1,6 +1,6 @@
 //! Solution of the assembled Newton system (tree elimination, bordered for loop-closing joints;
-//! the dense LU only as the test oracle) and the update of the
-//! iterate: `φ ← φ + δφ`, `dᵢ ← exp(δθ̂) dᵢ` (accumulated as increments), `μ ← μ + δμ`.
+//! the dense LU only as the test oracle) and the update of the iterate: `φ ← φ + δφ`,
+//! `dᵢ ← exp(δθ̂) dᵢ` (accumulated as increments), `μ ← μ + δμ`.
 
 use super::assemble::{read3, write3};
 use super::kernels::expm1_so3;
@@ -10,10 +10,10 @@ use super::work::Work;
 use crate::math::Vec3;
 
 /// Factors the assembled iteration matrix and solves for the assembled right-hand side; the
-/// solution replaces the right-hand side (every `ws.blocks[b].r` and the loop rows' `ws.border.rc`,
-/// or `ws.drhs` for the dense oracle) and the factors are kept (the tree blocks' `d` and `u`, the
-/// border's, or `ws.dense`/`ws.dpiv`) for [`resolve`]. False if
-/// the matrix is singular (the factors are then unusable).
+/// solution replaces the right-hand side (every `ws.blocks[b].r` and the loop rows'
+/// `ws.border.rc`, or `ws.drhs` for the dense oracle) and the factors are kept (the tree blocks'
+/// `d` and `u` and the border's, or `ws.dense`/`ws.dpiv`) for [`resolve`]. False if the matrix
+/// is singular (the factors are then unusable).
 pub(crate) fn solve(model: &Model, ws: &mut Work) -> bool {
     if model.dense {
         let n = ws.drhs.len();
@@ -32,8 +32,8 @@ pub(crate) fn solve(model: &Model, ws: &mut Work) -> bool {
 
 /// Solves for a new right-hand side with the factors kept by the last successful [`solve`]
 /// (chord Newton iterations): the right-hand side is read from, and the solution written to,
-/// every `ws.blocks[b].r` and `ws.border.rc` (or `ws.drhs`, dense oracle); only the right-hand side may
-/// have been re-assembled since. Always succeeds (the factors were checked by [`solve`]);
+/// every `ws.blocks[b].r` and `ws.border.rc` (or `ws.drhs`, dense oracle); only the right-hand
+/// side may have been re-assembled since. Always succeeds (the factors were checked by [`solve`]);
 /// returns true for symmetry with it.
 pub(crate) fn resolve(model: &Model, ws: &mut Work) -> bool {
     if model.dense {

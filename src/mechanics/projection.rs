@@ -44,7 +44,8 @@ pub(crate) struct ProjWork {
     blocks: Vec<Block>,
     /// Border of the loop-closing joints (empty for a tree).
     border: Border,
-    /// Dense KKT matrix (test oracle `Model::dense` only), row-major `nd × nd`, `nd = 6 N + active rows`.
+    /// Dense KKT matrix (test oracle `Model::dense` only), row-major `nd × nd`,
+    /// `nd = 6 N + active rows`.
     dense: Vec<f64>,
     /// Dense pivots.
     dpiv: Vec<usize>,
