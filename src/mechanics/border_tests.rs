@@ -306,3 +306,36 @@ fn thin_rods_as_accurate_as_the_tree_solve() {
         );
     }
 }
+
+/// `Mode::Residual` rebuilds the loop rows' right-hand side bit for bit and leaves the border
+/// matrices (part of the factors for chord iterations) untouched.
+#[test]
+fn residual_mode_keeps_the_border() {
+    const SENTINEL: f64 = 1234.5;
+    let def = chain_loop(8, Some(2), AX);
+    let m = Model::new(&def, SolverSettings::default()).expect("model");
+    let mut ws = Work::new(&m);
+    let damping: Vec<f64> = def.joints.iter().map(|j| j.damping).collect();
+    let stiffness: Vec<f64> = def.joints.iter().map(|j| j.stiffness).collect();
+    let held = Held {
+        inputs: &[],
+        damping: &damping,
+        stiffness: &stiffness,
+    };
+    let mut w = 0.0;
+    evaluate(&m, &mut ws, &held, 0.01, Mode::Full, &mut w);
+    assert!(solve(&m, &mut ws));
+    update(&m, &mut ws);
+    evaluate(&m, &mut ws, &held, 0.01, Mode::Full, &mut w);
+    let rc = ws.border.rc.clone();
+    assert!(rc.iter().any(|x| *x != 0.0));
+    for v in [&mut ws.border.bt, &mut ws.border.ct, &mut ws.border.x] {
+        v.fill(SENTINEL);
+    }
+    ws.border.rc.fill(-SENTINEL);
+    evaluate(&m, &mut ws, &held, 0.01, Mode::Residual, &mut w);
+    let bits = |v: &[f64]| v.iter().map(|x| x.to_bits()).collect::<Vec<_>>();
+    assert_eq!(bits(&ws.border.rc), bits(&rc));
+    let b = &ws.border;
+    assert!(b.bt.iter().chain(&b.ct).chain(&b.x).all(|x| *x == SENTINEL));
+}
