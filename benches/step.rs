@@ -1,5 +1,6 @@
 //! Criterion benches of one EM step (order 2, h = 1e-3): the peers' double pendulum, heavy top
-//! and chainN (N = 10, 100, 1000). `step/*` is the integrator step alone (`step_state`, what
+//! and chainN (N = 10, 100, 1000); with loop-closing joints the four-bar and chain100_loop
+//! (chain100 closed to the world, bordered tree solve). `step/*` is the integrator step alone (`step_state`, what
 //! every sub-step of a communication step costs); `outputs/*` is one refresh of the outputs
 //! (velocity projection, energy, momenta, joint coordinates; once per communication step).
 //!
@@ -45,6 +46,11 @@ fn bench(c: &mut Criterion) {
         ("chain10".into(), common::chain(10)),
         ("chain100".into(), common::chain(100)),
         ("chain1000".into(), common::chain(1000)),
+        ("fourbar".into(), common::four_bar(1.0, 3.0)),
+        (
+            "chain100_loop".into(),
+            common::chain_loop(100, None, 0.0, 0.0),
+        ),
     ];
     for (name, def) in cases {
         let (m, s0) = setup(&def);

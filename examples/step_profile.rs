@@ -1,8 +1,9 @@
 //! Callgrind driver of the core step: `cargo build --profile profiling --example step_profile`,
 //! then `valgrind --tool=callgrind target/profiling/examples/step_profile dp 2000` (or
-//! `chain100 200`; an optional third argument is the step size, default 1e-3). Also prints the
-//! wall-clock time per step of the run (release build: `cargo run --release --example
-//! step_profile chain1000 2000`, the whole 2 s run of the peers' protocol). Same settings as `benches/step.rs` (order 2, h = 1e-3, tolerance 1e-10).
+//! `chain100 200`, `fourbar 2000`, `chain100_loop 50`; an optional third argument is the step
+//! size, default 1e-3). Also prints the wall-clock time per step of the run (release build:
+//! `cargo run --release --example step_profile chain1000 2000`, the whole 2 s run of the peers'
+//! protocol). Same settings as `benches/step.rs` (order 2, h = 1e-3, tolerance 1e-10).
 use triad::mechanics::{step_state, Model, SolverSettings, State};
 
 #[path = "../tests/common/mod.rs"]
@@ -18,6 +19,8 @@ fn main() {
         "chain100" => common::chain(100),
         "chain1000" => common::chain(1000),
         "top" => common::heavy_top(),
+        "fourbar" => common::four_bar(1.0, 3.0),
+        "chain100_loop" => common::chain_loop(100, None, 0.0, 0.0),
         _ => common::double_pendulum(),
     };
     let h: f64 = args.get(3).and_then(|x| x.parse().ok()).unwrap_or(1e-3);

@@ -60,6 +60,8 @@ fn step_does_not_allocate() {
         (heavy_top(), 4),
         (chain(10), 2),
         (fb, 4),
+        // a loop between bodies not adjacent in the tree, with a spring and a damper
+        (chain_loop(10, Some(2), 5.0, 0.1), 2),
     ] {
         let (m, mut s) = build(&def, settings(0.01, order));
         if !s.inputs().is_empty() {

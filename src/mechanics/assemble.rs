@@ -132,7 +132,8 @@ pub(crate) fn build(model: &mut Model, joint_input: &[Option<usize>]) -> Result<
     model.nrows = row0;
     model.nturn = turn0;
     model.angles0 = angles0;
-    model.dense = !tree.loop_joints.is_empty();
+    // loop-closing joints (`tree.loop_joints`) form the border of the tree solve (`border`);
+    // the dense LU is only the test oracle (`Model::set_dense_solver`)
     for (b, tj) in model.tree_joint.iter().enumerate() {
         if let Some(j) = tj {
             if model.joints[*j].rows.len() > 6 {

@@ -89,7 +89,9 @@ pub(crate) fn project_bodies(
             let mut sink = Sink {
                 model,
                 blocks: &mut ws.blocks,
+                border: &mut ws.border,
                 dense: &mut ws.dense,
+                drhs: &mut ws.drhs,
                 nd,
             };
             sink.body_body(b, b, blk);

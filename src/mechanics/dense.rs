@@ -1,5 +1,6 @@
-//! Dense LU with partial pivoting: the Newton and projection systems of models with loop-closing
-//! joints (`6 N + active rows` unknowns, row-major, preallocated by the caller).
+//! Dense LU with partial pivoting: the small Schur complement of the bordered loop solve
+//! (`border`), and the whole Newton and projection systems (`6 N + active rows` unknowns) for the
+//! dense test oracle (`Model::dense`); row-major, preallocated by the caller.
 // index loops over the rows and columns of a row-major matrix read closer to the formulas
 #![allow(clippy::needless_range_loop)]
 

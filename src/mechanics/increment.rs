@@ -1,5 +1,6 @@
-//! Solution of the assembled Newton system (tree elimination or dense LU) and the update of the
-//! iterate: `φ ← φ + δφ`, `dᵢ ← exp(δθ̂) dᵢ` (accumulated as increments), `μ ← μ + δμ`.
+//! Solution of the assembled Newton system (tree elimination, bordered for loop-closing joints;
+//! the dense LU only as the test oracle) and the update of the iterate: `φ ← φ + δφ`,
+//! `dᵢ ← exp(δθ̂) dᵢ` (accumulated as increments), `μ ← μ + δμ`.
 
 use super::assemble::{read3, write3};
 use super::kernels::expm1_so3;
@@ -9,9 +10,10 @@ use super::work::Work;
 use crate::math::Vec3;
 
 /// Factors the assembled iteration matrix and solves for the assembled right-hand side; the
-/// solution replaces the right-hand side (`ws.drhs` or every `ws.blocks[b].r`) and the factors
-/// are kept (`ws.dense`/`ws.dpiv` or the tree blocks' `d` and `u`) for [`resolve`]. False if
-/// the matrix is singular (the factors are then unusable).
+/// solution replaces the right-hand side (every `ws.blocks[b].r` and the loop rows'
+/// `ws.border.rc`, or `ws.drhs` for the dense oracle) and the factors are kept (the tree blocks'
+/// `d` and `u` and the border's, or `ws.dense`/`ws.dpiv`) for [`resolve`]. False if the matrix
+/// is singular (the factors are then unusable).
 pub(crate) fn solve(model: &Model, ws: &mut Work) -> bool {
     if model.dense {
         let n = ws.drhs.len();
@@ -20,6 +22,9 @@ pub(crate) fn solve(model: &Model, ws: &mut Work) -> bool {
         }
         lu_solve(&ws.dense, n, n, &ws.dpiv, &mut ws.drhs);
         true
+    } else if ws.border.is_active() {
+        ws.border
+            .factor_solve(&mut ws.blocks, &model.order, &model.parent)
     } else {
         solve_tree(&mut ws.blocks, &model.order, &model.parent)
     }
@@ -27,13 +32,16 @@ pub(crate) fn solve(model: &Model, ws: &mut Work) -> bool {
 
 /// Solves for a new right-hand side with the factors kept by the last successful [`solve`]
 /// (chord Newton iterations): the right-hand side is read from, and the solution written to,
-/// `ws.drhs` (loop systems) or every `ws.blocks[b].r` (trees); only the right-hand side may
-/// have been re-assembled since. Always succeeds (the factors were checked by [`solve`]);
+/// every `ws.blocks[b].r` and `ws.border.rc` (or `ws.drhs`, dense oracle); only the right-hand
+/// side may have been re-assembled since. Always succeeds (the factors were checked by [`solve`]);
 /// returns true for symmetry with it.
 pub(crate) fn resolve(model: &Model, ws: &mut Work) -> bool {
     if model.dense {
         let n = ws.drhs.len();
         lu_solve(&ws.dense, n, n, &ws.dpiv, &mut ws.drhs);
+    } else if ws.border.is_active() {
+        ws.border
+            .resolve(&mut ws.blocks, &model.order, &model.parent);
     } else {
         solve_factored(&mut ws.blocks, &model.order, &model.parent);
     }
@@ -67,12 +75,14 @@ pub(crate) fn update(model: &Model, ws: &mut Work) -> (f64, f64) {
         }
     }
     let mut dmu = 0.0_f64;
-    for jt in &model.joints {
+    for (j, jt) in model.joints.iter().enumerate() {
         let br = &model.bodies[jt.child];
         let scale = br.fs.max(model.lc.max(1.0) * br.ms);
         for k in 0..jt.rows.len() {
             let dm = if model.dense {
                 ws.drhs[6 * nb + jt.row0 + k]
+            } else if let Some(l) = ws.border.lrow[j] {
+                ws.border.rc[l + k]
             } else {
                 ws.blocks[jt.child].r[6 + k]
             };

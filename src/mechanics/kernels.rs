@@ -1,11 +1,12 @@
 //! Small kernels of the Newton residual and Jacobian: node access, the reciprocal basis and the
 //! discrete rotation increment, the projected blocks `P̄ᵀ (C ⊗ I) Q`, the torque Jacobians, the
 //! accurate `exp(θ̂) − I`, and the [`Sink`] that routes Jacobian blocks into the tree blocks or
-//! the dense matrix.
+//! the border of a loop system (or the dense test oracle).
 // index loops over coupled fixed-size arrays read closer to the formulas than iterator chains
 #![allow(clippy::needless_range_loop)]
 
 use super::assemble::{read3, write3};
+use super::border::Border;
 use super::constraint::{nodes, Nodes};
 use super::model::Model;
 use super::solver::{Block, NMAX};
@@ -117,14 +118,20 @@ pub(crate) fn linvec_jac(k: &[f64; 4], d: &[Vec3; 3]) -> [f64; 18] {
     out
 }
 
-/// Where the Jacobian goes: the tree blocks or the dense matrix.
+/// Where the Jacobian and the joint rows' right-hand sides go: the tree blocks (spanning tree),
+/// the border (rows and off-tree couplings of loop-closing joints, see `border`), or, for the
+/// dense test oracle (`Model::dense`), one dense matrix.
 pub(crate) struct Sink<'a> {
     /// The model (tree structure, row offsets).
     pub model: &'a Model,
     /// Tree blocks.
     pub blocks: &'a mut [Block],
-    /// Dense matrix (loop systems).
+    /// Border of the loop-closing joints (empty for a tree).
+    pub border: &'a mut Border,
+    /// Dense matrix (oracle only), row-major `nd × nd`.
     pub dense: &'a mut [f64],
+    /// Dense right-hand side (oracle only).
+    pub drhs: &'a mut [f64],
     /// Dense dimension.
     pub nd: usize,
 }
@@ -160,6 +167,9 @@ impl Sink<'_> {
                     u[r * 6 + s] += blk[r * 6 + s];
                 }
             }
+        } else {
+            // a loop-closing joint between bodies not adjacent in the tree
+            self.border.add_coupling(a, b, blk);
         }
     }
 
@@ -172,6 +182,8 @@ impl Sink<'_> {
             for r in 0..6 {
                 self.dense[(6 * a + r) * nd + c] += col[r];
             }
+        } else if let Some(l) = self.border.lrow[j] {
+            self.border.add_col(a, l + k, col);
         } else if a == jt.child {
             let d = &mut self.blocks[a].d;
             for r in 0..6 {
@@ -194,6 +206,8 @@ impl Sink<'_> {
             for s in 0..6 {
                 self.dense[r * nd + 6 * b + s] += row[s];
             }
+        } else if let Some(l) = self.border.lrow[j] {
+            self.border.add_row(l + k, b, row);
         } else if b == jt.child {
             let d = &mut self.blocks[b].d;
             for s in 0..6 {
@@ -204,6 +218,20 @@ impl Sink<'_> {
             for s in 0..6 {
                 u[(6 + k) * 6 + s] += row[s];
             }
+        }
+    }
+}
+
+impl Sink<'_> {
+    /// Sets the right-hand side of row `k` of joint `j` to `v`.
+    pub(crate) fn rhs_row(&mut self, j: usize, k: usize, v: f64) {
+        let jt = &self.model.joints[j];
+        if self.model.dense {
+            self.drhs[6 * self.model.bodies.len() + jt.row0 + k] = v;
+        } else if let Some(l) = self.border.lrow[j] {
+            self.border.rc[l + k] = v;
+        } else {
+            self.blocks[jt.child].r[6 + k] = v;
         }
     }
 }

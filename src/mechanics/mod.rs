@@ -16,6 +16,7 @@
 mod assemble;
 pub mod body;
 mod body_terms;
+mod border;
 pub mod constraint;
 pub mod def;
 mod dense;

@@ -121,7 +121,8 @@ pub struct Model {
     pub(crate) nrows: usize,
     /// Number of turn dofs (unwrapping memory length).
     pub(crate) nturn: usize,
-    /// Use the dense solver (loop-closing joints present).
+    /// Use the dense LU over all unknowns (O(N³)) instead of the tree solve (bordered for loops):
+    /// the test oracle only, false as built (see [`Model::set_dense_solver`]).
     pub(crate) dense: bool,
     /// Characteristic length for scaled norms, m.
     pub(crate) lc: f64,
@@ -320,10 +321,20 @@ impl Model {
         self.nrows
     }
 
-    /// Whether the dense (loop) solver is used instead of the O(N) tree elimination.
+    /// Whether the dense LU test oracle is used instead of the tree elimination (O(N); with
+    /// loop-closing joints bordered, O(N·t + t³) for `t` border unknowns). False as built, for
+    /// trees and loops alike; only [`Model::set_dense_solver`] sets it.
     #[must_use]
     pub fn uses_dense_solver(&self) -> bool {
         self.dense
+    }
+
+    /// Test-only: switches the Newton and projection solves to one dense LU over all unknowns
+    /// (O(N³)), the oracle of the tree and bordered solves. Call before `State::new` (the
+    /// workspaces are sized for the solver). Never use outside tests.
+    #[doc(hidden)]
+    pub fn set_dense_solver(&mut self, dense: bool) {
+        self.dense = dense;
     }
 
     /// Test-only: switches body torques to the naive director-force representation

@@ -40,11 +40,13 @@ use crate::math::Vec3;
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub(crate) enum Mode {
     /// Residual (all rows, norms, right-hand side `−r`) and the analytic Jacobian: clears
-    /// and fills the tree blocks (`d`, `u`, `l`, `r`) or the dense system (`dense`, `drhs`).
+    /// and fills the tree blocks (`d`, `u`, `l`, `r`) and the border, or the dense system
+    /// (`dense`, `drhs`).
     Full,
     /// Everything [`Mode::Full`] computes for the right-hand side, bit for bit, but no
-    /// Jacobian: zeroes and fills only the right-hand sides (`Block::r` of every block, or
-    /// `drhs`); the matrices `d`, `u`, `l` and `dense` are left untouched (they may hold the
+    /// Jacobian: zeroes and fills only the right-hand sides (`Block::r` of every block and the
+    /// border's `rc`, or `drhs`); the matrices `d`, `u`, `l`, the border's and `dense` are left
+    /// untouched (they may hold the
     /// factors of an earlier `Full` iteration, for chord iterations).
     Residual,
 }
@@ -66,10 +68,16 @@ pub(crate) fn evaluate(model: &Model, ws: &mut Work, held: &Held, h: f64, mode: 
             ws.dense.fill(0.0);
             ws.drhs.fill(0.0);
         }
-        Mode::Full => ws.blocks.iter_mut().for_each(|b| b.clear()),
+        Mode::Full => {
+            ws.blocks.iter_mut().for_each(|b| b.clear());
+            ws.border.clear();
+        }
         // the matrices may hold factors: only the right-hand sides are rebuilt
         Mode::Residual if model.dense => ws.drhs.fill(0.0),
-        Mode::Residual => ws.blocks.iter_mut().for_each(|b| b.r.fill(0.0)),
+        Mode::Residual => {
+            ws.blocks.iter_mut().for_each(|b| b.r.fill(0.0));
+            ws.border.rc.fill(0.0);
+        }
     }
     // body inertia and applied forces, node form
     for b in 0..nb {
@@ -110,12 +118,16 @@ pub(crate) fn evaluate(model: &Model, ws: &mut Work, held: &Held, h: f64, mode: 
     let gscale = 1.0 / model.lc.min(1.0);
     let mut sink_dense = std::mem::take(&mut ws.dense);
     let mut sink_blocks = std::mem::take(&mut ws.blocks);
-    let nd = ws.drhs.len();
+    let mut sink_drhs = std::mem::take(&mut ws.drhs);
+    let mut sink_border = std::mem::take(&mut ws.border);
+    let nd = sink_drhs.len();
     {
         let mut sink = Sink {
             model,
             blocks: &mut sink_blocks,
+            border: &mut sink_border,
             dense: &mut sink_dense,
+            drhs: &mut sink_drhs,
             nd,
         };
         // what one joint adds (node forces, node coupling C_AB and extra blocks; cleared per
@@ -141,11 +153,7 @@ pub(crate) fn evaluate(model: &Model, ws: &mut Work, held: &Held, h: f64, mode: 
                 let (u1, w1) = sr.uw(qa, qb);
                 let gv = sr.value(&u1, &w1);
                 res = res.max(gv.abs() * gscale);
-                if model.dense {
-                    ws.drhs[6 * nb + jt.row0 + k] = -gv;
-                } else {
-                    sink.blocks[bb].r[6 + k] = -gv;
-                }
+                sink.rhs_row(j, k, -gv);
                 if jac {
                     // multiplier columns P̄ᵀ∇g(q̄) (skipped where the row is zero)
                     if let Some(col) = sr.project(grad, Side::B, dbar_b) {
@@ -205,6 +213,8 @@ pub(crate) fn evaluate(model: &Model, ws: &mut Work, held: &Held, h: f64, mode: 
     }
     ws.dense = sink_dense;
     ws.blocks = sink_blocks;
+    ws.drhs = sink_drhs;
+    ws.border = sink_border;
     res = res.max(project_bodies(model, ws, held, hh, mode, nd));
     Norms { res }
 }

@@ -19,7 +19,8 @@
 //! directors, kg·m²) and `PᵀM v = (m φ̇, Σᵢ dᵢ × pᵢ)`, `pᵢ = Σⱼ Eᵢⱼ ḋⱼ` (N·s, N·m·s). It has the
 //! block structure of the Newton matrix (a 6 × 6 block per body, the rows of each tree joint
 //! with its child, couplings along tree edges), so it is solved by the same O(N) tree
-//! elimination, or by the dense LU when the model has loop-closing joints. Redundant (dropped)
+//! elimination; the rows of loop-closing joints form the border of that solve (`border`, the same
+//! bordered solve as the Newton step; the dense LU only as the test oracle). Redundant (dropped)
 //! loop rows stay dropped.
 //!
 //! Properties: the residual `v − v'` is M-orthogonal to every admissible velocity, in
@@ -29,6 +30,7 @@
 // index loops over coupled fixed-size arrays read closer to the formulas than iterator chains
 #![allow(clippy::needless_range_loop)]
 
+use super::border::Border;
 use super::constraint::Nodes;
 use super::kernels::{body_nodes, node_block, row_q, Sink};
 use super::model::Model;
@@ -40,7 +42,10 @@ use crate::math::Vec3;
 pub(crate) struct ProjWork {
     /// Tree blocks (one per body; `6 +` rows of its tree joint).
     blocks: Vec<Block>,
-    /// Dense KKT matrix (loop systems), row-major `nd × nd`, `nd = 6 N + active rows`.
+    /// Border of the loop-closing joints (empty for a tree).
+    border: Border,
+    /// Dense KKT matrix (test oracle `Model::dense` only), row-major `nd × nd`,
+    /// `nd = 6 N + active rows`.
     dense: Vec<f64>,
     /// Dense pivots.
     dpiv: Vec<usize>,
@@ -60,6 +65,7 @@ impl ProjWork {
         let nd = if model.dense { 6 * nb + model.nrows } else { 0 };
         Self {
             blocks,
+            border: Border::new(model),
             dense: vec![0.0; nd * nd],
             dpiv: vec![0; nd],
             drhs: vec![0.0; nd],
@@ -81,11 +87,14 @@ pub(crate) fn project_velocities(model: &Model, q: &[f64], v: &[f64], pw: &mut P
         for b in &mut pw.blocks {
             b.clear();
         }
+        pw.border.clear();
     }
     let mut sink = Sink {
         model,
         blocks: &mut pw.blocks,
+        border: &mut pw.border,
         dense: &mut pw.dense,
+        drhs: &mut pw.drhs,
         nd,
     };
     // body blocks PᵀMP and right-hand sides PᵀMv
@@ -117,13 +126,13 @@ pub(crate) fn project_velocities(model: &Model, q: &[f64], v: &[f64], pw: &mut P
             l.z,
         ];
         if dense {
-            pw.drhs[6 * b..6 * b + 6].copy_from_slice(&rhs);
+            sink.drhs[6 * b..6 * b + 6].copy_from_slice(&rhs);
         } else {
             sink.blocks[b].r[..6].copy_from_slice(&rhs);
         }
     }
     if dense {
-        pw.drhs[6 * nb..].fill(0.0);
+        sink.drhs[6 * nb..].fill(0.0);
     }
     // joint rows G P (active rows only) and their transposes
     let zero: Nodes = [Vec3::zeros(); 4];
@@ -150,6 +159,9 @@ pub(crate) fn project_velocities(model: &Model, q: &[f64], v: &[f64], pw: &mut P
             lu_solve(&pw.dense, nd, nd, &pw.dpiv, &mut pw.drhs);
             true
         }
+    } else if pw.border.is_active() {
+        pw.border
+            .factor_solve(&mut pw.blocks, &model.order, &model.parent)
     } else {
         solve_tree(&mut pw.blocks, &model.order, &model.parent)
     };

@@ -1,5 +1,5 @@
-//! Linear algebra of the Newton step: the tree block elimination (Baraff's linear-time method),
-//! with the dense LU of `dense` as the fallback for systems with loops.
+//! Linear algebra of the Newton step: the tree block elimination (Baraff's linear-time method);
+//! systems with loop-closing joints border it (`border`).
 //!
 //! Tree structure: the unknowns of supernode `b` are body `b`'s increment `x_b = (δφ, δθ)` (6)
 //! followed by the scaled multipliers `μ` of its active tree-joint rows (`m_b ≤ 6`). Every
@@ -17,10 +17,10 @@
 //! `Y = D⁻¹ U` and updates the parent's `K` by `−L Y`; [`solve_factored`] then solves for any number of right-hand sides with the stored
 //! factors (forward `y = D⁻¹ r`, `r_p −= L y`, back `x = y − Y x_p`); [`solve_tree`] does both.
 //!
-//! Systems with loop-closing joints use one dense LU with partial pivoting over all unknowns
-//! (`6 N + active rows`, preallocated in the workspace): O(N³), meant for the small closed
-//! linkages (four-bars, parallel mechanisms) this tool targets; redundant loop rows are dropped
-//! at set-up so that the matrix stays regular.
+//! Systems with loop-closing joints factor their spanning tree here and eliminate the loop rows
+//! (and the couplings of loop joints between bodies not adjacent in the tree) by a small dense
+//! Schur complement (`border`): O(N·t + t³). The dense LU over all unknowns (`dense`, O(N³))
+//! remains only as the test oracle (`Model::dense`).
 // index loops over coupled fixed-size arrays read closer to the formulas than iterator chains
 #![allow(clippy::needless_range_loop)]
 

@@ -1,5 +1,6 @@
 //! The preallocated Newton workspace of a step and the loads held over it.
 
+use super::border::Border;
 use super::model::Model;
 use super::solver::Block;
 
@@ -48,7 +49,9 @@ pub(crate) struct Work {
     pub xbody: Vec<[f64; 36]>,
     /// Tree blocks (one per body).
     pub blocks: Vec<Block>,
-    /// Dense matrix (loop systems), row-major `n × n`.
+    /// Border of the loop-closing joints and its factors (empty for a tree).
+    pub border: Border,
+    /// Dense matrix (test oracle `Model::dense` only), row-major `n × n`.
     pub dense: Vec<f64>,
     /// Dense pivots.
     pub dpiv: Vec<usize>,
@@ -86,6 +89,7 @@ impl Work {
             cbody: vec![[0.0; 16]; nb],
             xbody: vec![[0.0; 36]; nb],
             blocks,
+            border: Border::new(model),
             dense: vec![0.0; nd * nd],
             dpiv: vec![0; nd],
             drhs: vec![0.0; nd],

@@ -242,6 +242,48 @@ pub fn chain(n: usize) -> ModelDef {
     }
 }
 
+/// `chain(n)` closed by a loop-closing revolute from the end of the last link (0.25 m below its
+/// joint, body frame) to the world (`to = None`) or to body `to`'s frame, placed where the end is
+/// at `q0` (frames coincide, axis = the last link's body x); the loop joint carries
+/// `stiffness`/`damping` (N·m/rad, N·m·s/rad).
+#[must_use]
+pub fn chain_loop(n: usize, to: Option<usize>, stiffness: f64, damping: f64) -> ModelDef {
+    use triad::mechanics::body::BodyInertia;
+    use triad::mechanics::kinematics::initial_configuration;
+    let mut def = chain(n);
+    let (q0, _) = initial_configuration(&def).expect("chain configures");
+    let pose = |b: usize| {
+        BodyInertia::new(&def.bodies[b])
+            .expect("body")
+            .frame_from_coords(&q0[12 * b..12 * b + 12])
+    };
+    let (oe, re) = pose(n - 1);
+    let end = Vec3::new(0.0, 0.0, -0.25);
+    let p_end = oe + re * end;
+    let (o_to, r_to) = to.map_or((Vec3::zeros(), Mat3::identity()), pose);
+    let mut close = joint(
+        "close",
+        JointType::Revolute,
+        to,
+        n - 1,
+        Vec3::zeros(),
+        Vec3::x(),
+    );
+    close.parent_frame = Frame {
+        translation: r_to.transpose() * (p_end - o_to),
+        rotation: r_to.transpose() * re,
+    };
+    close.child_frame = Frame {
+        translation: end,
+        rotation: Mat3::identity(),
+    };
+    close.loop_closing = true;
+    close.stiffness = stiffness;
+    close.damping = damping;
+    def.joints.push(close);
+    def
+}
+
 /// Model + state.
 #[must_use]
 pub fn build(def: &ModelDef, s: SolverSettings) -> (Model, State) {
