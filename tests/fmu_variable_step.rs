@@ -50,3 +50,29 @@ fn varying_steps_land_exactly_and_match_the_simulation() {
         }
     }
 }
+
+/// `Simulation::advance_state` steps like `advance` but leaves the outputs at their last
+/// refresh; a refresh then gives, bit for bit, the outputs `advance` gives.
+#[test]
+fn advance_state_defers_the_outputs() {
+    let m = TestModel::pendulum();
+    let (def, settings) = m.spec.lower().unwrap();
+    let mut a = Simulation::new(&def, settings, 0.0).unwrap();
+    let mut b = Simulation::new(&def, settings, 0.0).unwrap();
+    let before = format!("{:?}", b.state().outputs());
+    for _ in 0..5 {
+        a.advance(0.01).unwrap();
+        b.advance_state(0.01).unwrap();
+    }
+    assert_eq!(a.state().time().to_bits(), b.state().time().to_bits());
+    assert_eq!(
+        format!("{:?}", b.state().outputs()),
+        before,
+        "outputs moved"
+    );
+    b.refresh_outputs();
+    assert_eq!(
+        format!("{:?}", b.state().outputs()),
+        format!("{:?}", a.state().outputs())
+    );
+}

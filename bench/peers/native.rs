@@ -181,8 +181,15 @@ fn main() -> Result<(), Box<dyn Error>> {
                     state.inputs_mut()[*s] = if on { *v } else { 0.0 };
                 }
             }
-            sim.advance(a.h)
-                .map_err(|e| format!("step failed at t = {}: {}", e.last_good_time, e.error))?;
+            // outputs are refreshed when they are read: by the once-per-step PD law, and at
+            // the output samples
+            let read = (!pd.is_empty() && !a.pd_internal) || i + 1 == nsub;
+            if read {
+                sim.advance(a.h)
+            } else {
+                sim.advance_state(a.h)
+            }
+            .map_err(|e| format!("step failed at t = {}: {}", e.last_good_time, e.error))?;
             t = (k * nsub + i + 1) as f64 * a.h;
         }
         rows.push(row(&sim, &columns, (k + 1) as f64 * a.dt_out));
