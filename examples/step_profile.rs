@@ -1,6 +1,6 @@
 //! Callgrind driver of the core step: `cargo build --profile profiling --example step_profile`,
 //! then `valgrind --tool=callgrind target/profiling/examples/step_profile dp 2000` (or
-//! `chain100 200`, `fourbar 2000`, `chain100_loop 50`; an optional third argument is the step
+//! `chain100 200`, `fourbar 2000`, `chain100_loop 50`, `chain400_loop`, `chain1000_loop`; an optional third argument is the step
 //! size, default 1e-3). Also prints the wall-clock time per step of the run (release build:
 //! `cargo run --release --example step_profile chain1000 2000`, the whole 2 s run of the peers'
 //! protocol). Same settings as `benches/step.rs` (order 2, h = 1e-3, tolerance 1e-10).
@@ -21,6 +21,8 @@ fn main() {
         "top" => common::heavy_top(),
         "fourbar" => common::four_bar(1.0, 3.0),
         "chain100_loop" => common::chain_loop(100, None, 0.0, 0.0),
+        "chain400_loop" => common::chain_loop(400, None, 0.0, 0.0),
+        "chain1000_loop" => common::chain_loop(1000, None, 0.0, 0.0),
         _ => common::double_pendulum(),
     };
     let h: f64 = args.get(3).and_then(|x| x.parse().ok()).unwrap_or(1e-3);
@@ -30,7 +32,9 @@ fn main() {
         tolerance: 1e-10,
         max_iterations: 20,
     };
+    let t_build = std::time::Instant::now();
     let m = Model::new(&def, s).expect("model");
+    eprintln!("model built in {:.3} s", t_build.elapsed().as_secs_f64());
     let mut st = State::new(&m);
     let (mut it, mut fac) = (0, 0);
     let t0 = std::time::Instant::now();

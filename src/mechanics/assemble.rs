@@ -48,7 +48,7 @@ pub(crate) fn build(model: &mut Model, joint_input: &[Option<usize>]) -> Result<
     for jd in &def.joints {
         geoms.push(JointGeom::new(jd, &def.bodies)?);
     }
-    let keep = redundant_rows(model, &geoms);
+    let keep = super::redundancy::redundant_rows(model, &geoms);
     let mut row0 = 0;
     let mut turn0 = 0;
     let mut angles0 = Vec::new();
@@ -144,48 +144,6 @@ pub(crate) fn build(model: &mut Model, joint_input: &[Option<usize>]) -> Result<
         }
     }
     Ok(())
-}
-
-/// Which rows to keep (`keep[j][k]`): all of them for a tree; with loops, Gram–Schmidt on the
-/// twist Jacobian rows at `q₀`, tree joints first, relative tolerance 1e-9.
-fn redundant_rows(model: &Model, geoms: &[JointGeom]) -> Vec<Vec<bool>> {
-    let def = model.def();
-    let mut keep: Vec<Vec<bool>> = geoms.iter().map(|g| vec![true; g.rows.len()]).collect();
-    if !def.joints.iter().any(|j| j.loop_closing) {
-        return keep;
-    }
-    let nb = def.bodies.len();
-    let lc = model.lc;
-    let mut basis: Vec<Vec<f64>> = Vec::new();
-    let order: Vec<usize> = (0..geoms.len())
-        .filter(|&j| !def.joints[j].loop_closing)
-        .chain((0..geoms.len()).filter(|&j| def.joints[j].loop_closing))
-        .collect();
-    for j in order {
-        let g = &geoms[j];
-        let a = super::loops::twist_jacobian(std::slice::from_ref(g), &model.q0, nb);
-        for k in 0..g.rows.len() {
-            // columns scaled to (m/s·lc⁻¹, rad/s) so that lengths and angles weigh alike
-            let mut r: Vec<f64> = (0..6 * nb)
-                .map(|c| a[(k, c)] * if c % 6 < 3 { lc } else { 1.0 })
-                .collect();
-            let n0 = r.iter().map(|x| x * x).sum::<f64>().sqrt();
-            for _ in 0..2 {
-                for e in &basis {
-                    let p: f64 = r.iter().zip(e).map(|(x, y)| x * y).sum();
-                    r.iter_mut().zip(e).for_each(|(x, y)| *x -= p * y);
-                }
-            }
-            let n1 = r.iter().map(|x| x * x).sum::<f64>().sqrt();
-            if n0 == 0.0 || n1 <= 1e-9 * n0 {
-                keep[j][k] = false;
-            } else {
-                r.iter_mut().for_each(|x| *x /= n1);
-                basis.push(r);
-            }
-        }
-    }
-    keep
 }
 
 /// Free bodies of a joint-free model: COM and directors from the given pose and twist.

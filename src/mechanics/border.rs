@@ -288,4 +288,4 @@ impl Border {
 
 #[cfg(test)]
 #[path = "border_tests.rs"]
-mod tests;
+pub(crate) mod tests;

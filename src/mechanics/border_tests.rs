@@ -52,7 +52,7 @@ fn revolute(parent: Option<usize>, child: usize, at: Vec3, axis: Vec3, q: f64) -
 
 /// Crank-rocker four-bar in the xy plane (as `tests/common::four_bar(1, 3)`), closed at the
 /// rocker end by a loop revolute to the world (initial rates projected onto the loop).
-fn four_bar() -> ModelDef {
+pub(crate) fn four_bar() -> ModelDef {
     let (g, a, b, c, th) = (2.0, 0.6, 2.2, 1.5, 1.0_f64);
     let link = |len: f64| {
         body(
@@ -91,7 +91,7 @@ fn four_bar() -> ModelDef {
 /// An `n`-link chain (0.25 m, 0.25 kg rods along −z, axes alternating x, y) closed by a loop
 /// revolute from the end of the last link to the world or to body `to`, with a spring and a
 /// damper on the loop joint.
-fn chain_loop(n: usize, to: Option<usize>, axial: f64) -> ModelDef {
+pub(crate) fn chain_loop(n: usize, to: Option<usize>, axial: f64) -> ModelDef {
     let mut bodies = Vec::new();
     let mut joints = Vec::new();
     for k in 0..n {

@@ -108,7 +108,6 @@ pub fn project_loop_velocities(
         .iter()
         .map(|j| JointGeom::new(j, &def.bodies))
         .collect::<Result<Vec<_>, _>>()?;
-    let a = twist_jacobian(&geoms, q, n);
     let mut t0 = DVector::zeros(6 * n);
     for b in 0..n {
         let (qb, vb) = (&q[12 * b..12 * b + 12], &v[12 * b..12 * b + 12]);
@@ -118,20 +117,20 @@ pub fn project_loop_velocities(
             t0[6 * b + 3 + c] = w[c];
         }
     }
-    let res = &a * &t0;
-    let mut i = 0;
-    let mut loop_violation: f64 = 0.0;
-    for (g, jd) in geoms.iter().zip(&def.joints) {
-        if jd.loop_closing {
-            loop_violation = (i..i + g.rows.len())
-                .map(|k| res[k].abs())
-                .fold(loop_violation, f64::max);
-        }
-        i += g.rows.len();
-    }
+    // the loop rows' velocity residual first (the tree rows hold by construction), from their
+    // own rows only: the whole Jacobian is formed only when there is something to project
+    let loop_geoms: Vec<JointGeom> = geoms
+        .iter()
+        .zip(&def.joints)
+        .filter(|(_, jd)| jd.loop_closing)
+        .map(|(g, _)| g.clone())
+        .collect();
+    let loop_violation = (twist_jacobian(&loop_geoms, q, n) * &t0).amax();
     if loop_violation <= 1e-12 * (1.0 + t0.amax()) {
         return Ok(false);
     }
+    let a = twist_jacobian(&geoms, q, n);
+    let res = &a * &t0;
     // metric M_t^{-1/2} per body, then y = −pinv(A M_t^{-1/2}) A t0, Δt = M_t^{-1/2} y
     let mut wi = DMatrix::zeros(6 * n, 6 * n);
     for (b, body) in def.bodies.iter().enumerate() {

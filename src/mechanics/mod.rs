@@ -32,6 +32,7 @@ mod model;
 mod newton;
 mod outputs;
 mod projection;
+mod redundancy;
 mod small_mat;
 mod solver;
 mod sparse_row;
