@@ -27,19 +27,17 @@ pub(crate) fn build(model: &mut Model, joint_input: &[Option<usize>]) -> Result<
     for b in 0..nb {
         model.parent[b] = tree.tree_joint[b].and_then(|j| def.joints[j].parent);
     }
+    // initial rates that violate the loop velocity constraints are projected onto them once
+    // the joints are assembled (below)
+    let mut project_rates = false;
     // initial state: free-body-only models are placed here (this also admits bodies whose
     // principal moments violate the triangle inequality, theory B1); jointed ones by kinematics
     if def.joints.is_empty() {
         free_initial(model)?;
     } else {
-        let (q0, mut v0) = super::kinematics::initial_configuration(&def)?;
+        let (q0, v0) = super::kinematics::initial_configuration(&def)?;
         super::loops::check_loops(&def, &q0)?;
-        if super::loops::project_loop_velocities(&def, &q0, &mut v0)? {
-            model.push_note(
-                "initial rates violated the loop velocity constraints and were projected onto them (least change in kinetic energy)"
-                    .into(),
-            );
-        }
+        project_rates = super::loops::loop_velocities_violated(&def, &q0, &v0)?;
         model.q0 = q0;
         model.v0 = v0;
     }
@@ -143,6 +141,21 @@ pub(crate) fn build(model: &mut Model, joint_input: &[Option<usize>]) -> Result<
             }
         }
     }
+    if project_rates {
+        // the M-orthogonal projection onto the admissible velocities (least change in kinetic
+        // energy), by the same O(N) bordered tree solve as the outputs' projection
+        let mut pw = super::projection::ProjWork::new(model);
+        if !super::projection::project_velocities(model, &model.q0, &model.v0, &mut pw) {
+            return Err(ModelError::Invalid(
+                "projection of the initial rates onto the loop constraints failed".into(),
+            ));
+        }
+        model.v0.copy_from_slice(&pw.vp);
+        model.push_note(
+            "initial rates violated the loop velocity constraints and were projected onto them (least change in kinetic energy)"
+                .into(),
+        );
+    }
     Ok(())
 }
 
@@ -234,3 +247,7 @@ pub(crate) fn joint_outputs(
         }
     }
 }
+
+#[cfg(test)]
+#[path = "assemble_tests.rs"]
+mod tests;

@@ -8,6 +8,12 @@
 //! `min ½ Δtᵀ M_t Δt` subject to `G(q0) P(q0) (t0 + Δt) = 0` over the rows of **all** joints
 //! (tree rows are already satisfied by `t0`, so they only keep the tree intact), with an SVD
 //! pseudo-inverse so that redundant loop rows do no harm.
+//!
+//! [`project_loop_velocities`] forms that dense problem (O(N³)) and is the reference. The model
+//! set-up only asks [`loop_velocities_violated`] (the loop rows' Jacobian alone) and, when the
+//! rates violate a loop, solves the same projection on the assembled model with the O(N)
+//! bordered tree solve of the outputs' velocity projection (`projection`; redundant rows are
+//! dropped there, so the system is regular).
 
 use nalgebra::{DMatrix, DVector};
 
@@ -87,6 +93,42 @@ pub fn twist_jacobian(geoms: &[JointGeom], q: &[f64], nbody: usize) -> DMatrix<f
     a
 }
 
+/// The twists `[φ̇, ω]` (6 per body) of the nodal velocities `v` at `q` (12 per body each).
+fn twists(q: &[f64], v: &[f64], n: usize) -> DVector<f64> {
+    let mut t = DVector::zeros(6 * n);
+    for b in 0..n {
+        let (qb, vb) = (&q[12 * b..12 * b + 12], &v[12 * b..12 * b + 12]);
+        let w = angular_velocity(qb, vb);
+        for c in 0..3 {
+            t[6 * b + c] = vb[c];
+            t[6 * b + 3 + c] = w[c];
+        }
+    }
+    t
+}
+
+/// Whether the velocities `v` (12 per body) at `q` violate the velocity constraints of the
+/// loop-closing joints by more than 1e-12 relative to the largest twist component (the tree
+/// joints' hold by construction of the initial state). Forms only the loop rows' Jacobian.
+///
+/// # Errors
+/// [`ModelError::Invalid`] from [`JointGeom::new`].
+pub fn loop_velocities_violated(def: &ModelDef, q: &[f64], v: &[f64]) -> Result<bool, ModelError> {
+    let loop_geoms = def
+        .joints
+        .iter()
+        .filter(|j| j.loop_closing)
+        .map(|j| JointGeom::new(j, &def.bodies))
+        .collect::<Result<Vec<_>, _>>()?;
+    if loop_geoms.is_empty() {
+        return Ok(false);
+    }
+    let n = def.bodies.len();
+    let t0 = twists(q, v, n);
+    let violation = (twist_jacobian(&loop_geoms, q, n) * &t0).amax();
+    Ok(violation > 1e-12 * (1.0 + t0.amax()))
+}
+
 /// Projects the initial velocities `v` (12 per body) at `q` onto the joints' velocity
 /// constraints with the least change in kinetic energy (module docs). Returns `true` when the
 /// loop-closing rows were violated (by more than 1e-12 relative to the largest twist component)
@@ -99,7 +141,7 @@ pub fn project_loop_velocities(
     q: &[f64],
     v: &mut [f64],
 ) -> Result<bool, ModelError> {
-    if !def.joints.iter().any(|j| j.loop_closing) {
+    if !loop_velocities_violated(def, q, v)? {
         return Ok(false);
     }
     let n = def.bodies.len();
@@ -108,27 +150,7 @@ pub fn project_loop_velocities(
         .iter()
         .map(|j| JointGeom::new(j, &def.bodies))
         .collect::<Result<Vec<_>, _>>()?;
-    let mut t0 = DVector::zeros(6 * n);
-    for b in 0..n {
-        let (qb, vb) = (&q[12 * b..12 * b + 12], &v[12 * b..12 * b + 12]);
-        let w = angular_velocity(qb, vb);
-        for c in 0..3 {
-            t0[6 * b + c] = vb[c];
-            t0[6 * b + 3 + c] = w[c];
-        }
-    }
-    // the loop rows' velocity residual first (the tree rows hold by construction), from their
-    // own rows only: the whole Jacobian is formed only when there is something to project
-    let loop_geoms: Vec<JointGeom> = geoms
-        .iter()
-        .zip(&def.joints)
-        .filter(|(_, jd)| jd.loop_closing)
-        .map(|(g, _)| g.clone())
-        .collect();
-    let loop_violation = (twist_jacobian(&loop_geoms, q, n) * &t0).amax();
-    if loop_violation <= 1e-12 * (1.0 + t0.amax()) {
-        return Ok(false);
-    }
+    let t0 = twists(q, v, n);
     let a = twist_jacobian(&geoms, q, n);
     let res = &a * &t0;
     // metric M_t^{-1/2} per body, then y = −pinv(A M_t^{-1/2}) A t0, Δt = M_t^{-1/2} y
