@@ -12,19 +12,20 @@
 //! consistent torques, the discrete gradients of the springs and dampers), summed in the order
 //! of the residual evaluation. Angles of joints with a spring or damper take the step `Δϑ` of
 //! the `atan2` discrete gradient (`turn::turn_step`), the angle the spring acted on; the other
-//! angles are read off the directors, `ϑ_{n+1} = ϑₙ + wrap(atan2(s₁, c₁) − ϑₙ)`, the same angle
-//! to round-off (`atan2(s, c)` is the joint coordinate) at a fraction of the cost.
+//! angles are read off the directors: `ϑ_{n+1}` is `atan2(s₁, c₁)` shifted by a multiple of 2π
+//! to lie nearest `ϑₙ` (`assemble::unwrap`), the same angle to round-off (`atan2(s, c)` is the
+//! joint coordinate) at a fraction of the cost.
 // index loops over coupled fixed-size arrays read closer to the formulas than iterator chains
 #![allow(clippy::needless_range_loop)]
 
-use super::assemble::read3;
+use super::assemble::{read3, unwrap};
 use super::constraint::Nodes;
+use super::joint_loads::actuator_input;
 use super::kernels::{body_nodes, rotation_increment};
 use super::model::{DofRt, Model};
 use super::turn::{row_increment, turn_step};
 use super::work::{Held, Work};
 use crate::math::Vec3;
-use std::f64::consts::{PI, TAU};
 
 /// Fills `ws.acc`, `ws.theta` and `ws.ang1` at the converged iterate `ws.q` (increments
 /// `ws.dq`) of a stage of size `h` (s); returns the stage's discrete work of the inputs minus
@@ -59,9 +60,7 @@ pub(crate) fn finish(model: &Model, ws: &mut Work, held: &Held, h: f64) -> f64 {
         let k_s = held.stiffness[j];
         let mut turn = jt.turn0;
         for (dk, dof) in jt.dofs.iter().enumerate() {
-            let act = jt
-                .input
-                .map_or(0.0, |i| held.inputs.get(i + dk).copied().unwrap_or(0.0));
+            let act = jt.input.map_or(0.0, |i| actuator_input(dk, held.inputs, i));
             match dof {
                 DofRt::Slide(row) => {
                     let s0 = row.eval(&node(&ws.qn, a), &node(&ws.qn, Some(bb)));
@@ -88,7 +87,7 @@ pub(crate) fn finish(model: &Model, ws: &mut Work, held: &Held, h: f64) -> f64 {
                     } else {
                         let (qa, qb) = (node(&ws.q, a), node(&ws.q, Some(bb)));
                         let t1 = tr.sin.eval(&qa, &qb).atan2(tr.cos.eval(&qa, &qb));
-                        ws.ang1[turn] = t0 + wrap(t1 - t0);
+                        ws.ang1[turn] = unwrap(t0, t1);
                     }
                     turn += 1;
                 }
@@ -113,10 +112,4 @@ pub(crate) fn finish(model: &Model, ws: &mut Work, held: &Held, h: f64) -> f64 {
         }
     }
     work
-}
-
-/// `x` wrapped to `[−π, π)` (rad).
-#[inline]
-fn wrap(x: f64) -> f64 {
-    x - TAU * ((x + PI) / TAU).floor()
 }

@@ -300,6 +300,6 @@ pub(crate) fn joint_loads(
 }
 
 /// Value of the actuator input driving dof `dk` of a joint whose inputs start at `first`.
-fn actuator_input(dk: usize, inputs: &[f64], first: usize) -> f64 {
+pub(crate) fn actuator_input(dk: usize, inputs: &[f64], first: usize) -> f64 {
     inputs.get(first + dk).copied().unwrap_or(0.0)
 }

@@ -66,6 +66,32 @@ pub fn check_loops(def: &ModelDef, q: &[f64]) -> Result<(), ModelError> {
     Ok(())
 }
 
+/// The twist-space gradient of each row of `g` at `q` (12 per body): `∂g/∂φ · φ̇ + ω · Σ d_k ×
+/// ∂g/∂d_k` as `[∂g/∂φ, Σ d_k × ∂g/∂d_k]` for the parent (zero for the world) and the child,
+/// in row order. Units m/s per (m/s, rad/s).
+#[must_use]
+pub(crate) fn row_twists(g: &JointGeom, q: &[f64]) -> Vec<([f64; 6], [f64; 6])> {
+    let (qa, qb) = (body_nodes(q, g.parent), body_nodes(q, Some(g.child)));
+    g.rows
+        .iter()
+        .map(|row| {
+            let mut grad = [Vec3::zeros(); 2 * NODES];
+            row.gradient(&qa, &qb, &mut grad);
+            let side = |o: usize, nodes: &[Vec3; NODES]| {
+                let m: Vec3 = (1..NODES).map(|k| nodes[k].cross(&grad[o + k])).sum();
+                let f = grad[o];
+                [f.x, f.y, f.z, m.x, m.y, m.z]
+            };
+            let pa = if g.parent.is_some() {
+                side(0, &qa)
+            } else {
+                [0.0; 6]
+            };
+            (pa, side(NODES, &qb))
+        })
+        .collect()
+}
+
 /// The velocity Jacobian in twist coordinates, `A = G(q) P(q)` (rows: every row of every joint
 /// in `geoms`, in order; columns: `[φ̇, ω]` per body). Row units m/s per (m/s, rad/s).
 #[must_use]
@@ -74,17 +100,11 @@ pub fn twist_jacobian(geoms: &[JointGeom], q: &[f64], nbody: usize) -> DMatrix<f
     let mut a = DMatrix::zeros(nrow, 6 * nbody);
     let mut i = 0;
     for g in geoms {
-        let (qa, qb) = (body_nodes(q, g.parent), body_nodes(q, Some(g.child)));
-        for row in &g.rows {
-            let mut grad = [Vec3::zeros(); 2 * NODES];
-            row.gradient(&qa, &qb, &mut grad);
-            for (side, body, nodes) in [(0, g.parent, &qa), (NODES, Some(g.child), &qb)] {
+        for (pa, ch) in row_twists(g, q) {
+            for (body, t) in [(g.parent, pa), (Some(g.child), ch)] {
                 let Some(b) = body else { continue };
-                // ∂g/∂φ · φ̇ + Σ ∂g/∂d_k · (ω × d_k) = ∂g/∂φ · φ̇ + ω · Σ d_k × ∂g/∂d_k
-                let moment: Vec3 = (1..NODES).map(|k| nodes[k].cross(&grad[side + k])).sum();
-                for c in 0..3 {
-                    a[(i, 6 * b + c)] += grad[side][c];
-                    a[(i, 6 * b + 3 + c)] += moment[c];
+                for c in 0..6 {
+                    a[(i, 6 * b + c)] += t[c];
                 }
             }
             i += 1;

@@ -25,36 +25,23 @@
 // index loops over coupled fixed-size arrays read closer to the formulas than iterator chains
 #![allow(clippy::needless_range_loop)]
 
-use super::joint::{body_nodes, JointGeom};
+use super::joint::JointGeom;
+use super::loops::row_twists;
 use super::model::Model;
 use super::solver::{factor_tree, solve_factored, Block, NMAX};
-use crate::math::Vec3;
 
 /// Relative size below which a row's new component counts as zero.
 const RANK_TOL: f64 = 1e-9;
 
-/// The twist-space gradient of each row of `g` at the configuration `q` (12 per body): the
-/// parent's 6 entries (zero for the world) and the child's, linear columns times `lc`.
+/// [`row_twists`] of `g` at `q` with the linear columns times `lc`.
 fn twist_rows(g: &JointGeom, q: &[f64], lc: f64) -> Vec<([f64; 6], [f64; 6])> {
-    let (qa, qb) = (body_nodes(q, g.parent), body_nodes(q, Some(g.child)));
-    g.rows
-        .iter()
-        .map(|row| {
-            let mut grad = [Vec3::zeros(); 8];
-            row.gradient(&qa, &qb, &mut grad);
-            // ∂g/∂φ · φ̇ + ω · Σ d_k × ∂g/∂d_k, per side
-            let side = |o: usize, nodes: &[Vec3; 4]| {
-                let m: Vec3 = (1..4).map(|k| nodes[k].cross(&grad[o + k])).sum();
-                let f = grad[o];
-                [f.x * lc, f.y * lc, f.z * lc, m.x, m.y, m.z]
-            };
-            let pa = if g.parent.is_some() {
-                side(0, &qa)
-            } else {
-                [0.0; 6]
-            };
-            (pa, side(4, &qb))
-        })
+    let scale = |mut t: [f64; 6]| {
+        t[..3].iter_mut().for_each(|x| *x *= lc);
+        t
+    };
+    row_twists(g, q)
+        .into_iter()
+        .map(|(pa, ch)| (scale(pa), scale(ch)))
         .collect()
 }
 
