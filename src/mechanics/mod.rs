@@ -33,6 +33,7 @@ mod newton;
 mod outputs;
 mod projection;
 mod redundancy;
+mod reduced;
 mod small_mat;
 mod solver;
 mod sparse_row;

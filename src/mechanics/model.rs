@@ -124,6 +124,9 @@ pub struct Model {
     /// Use the dense LU over all unknowns (O(N³)) instead of the tree solve (bordered for loops):
     /// the test oracle only, false as built (see [`Model::set_dense_solver`]).
     pub(crate) dense: bool,
+    /// Solve trees by the reduced (joint-increment) iteration, `reduced`; true as built for
+    /// models it covers (see [`Model::set_reduced_solver`]).
+    pub(crate) reduced: bool,
     /// Characteristic length for scaled norms, m.
     pub(crate) lc: f64,
     /// Initial coordinates (12 per body), world frame.
@@ -267,6 +270,7 @@ impl Model {
             nrows: 0,
             nturn: 0,
             dense: false,
+            reduced: false,
             lc,
             q0: vec![0.0; 12 * def.bodies.len()],
             v0: vec![0.0; 12 * def.bodies.len()],
@@ -276,6 +280,7 @@ impl Model {
             naive_torque: false,
         };
         super::assemble::build(&mut model, &joint_input)?;
+        model.reduced = super::reduced::covers(&model);
         Ok(model)
     }
 
@@ -335,6 +340,22 @@ impl Model {
     #[doc(hidden)]
     pub fn set_dense_solver(&mut self, dense: bool) {
         self.dense = dense;
+    }
+
+    /// Whether steps solve the reduced equations in the joint increments (discrete null-space
+    /// method, theory.md §4.5) before the multiplier form: true as built for models without
+    /// loop-closing joints.
+    #[must_use]
+    pub fn uses_reduced_solver(&self) -> bool {
+        self.reduced && !self.dense
+    }
+
+    /// Test-only: `false` solves every stage in the multiplier form (body increments and joint
+    /// multipliers), the oracle of the reduced iteration; `true` restores the default where
+    /// the model allows it. Never use outside tests.
+    #[doc(hidden)]
+    pub fn set_reduced_solver(&mut self, on: bool) {
+        self.reduced = on && super::reduced::covers(self);
     }
 
     /// Test-only: switches body torques to the naive director-force representation

@@ -57,9 +57,7 @@ pub(crate) enum Mode {
 #[allow(clippy::too_many_lines)]
 pub(crate) fn evaluate(model: &Model, ws: &mut Work, held: &Held, h: f64, mode: Mode) -> Norms {
     let jac = mode == Mode::Full;
-    let nb = model.bodies.len();
     let hh = 0.5 * h * h;
-    let g = model.def().gravity;
     for k in 0..ws.q.len() {
         ws.qbar[k] = ws.qn[k] + 0.5 * ws.dq[k];
     }
@@ -79,40 +77,7 @@ pub(crate) fn evaluate(model: &Model, ws: &mut Work, held: &Held, h: f64, mode: 
             ws.border.rc.fill(0.0);
         }
     }
-    // body inertia and applied forces, node form
-    for b in 0..nb {
-        let br = &model.bodies[b];
-        // a = Δq − h vₙ with one rounding (fused multiply-add) plus the low part of vₙ
-        for k in 12 * b..12 * b + 12 {
-            ws.acc[k] = (-h).mul_add(ws.vn[k], ws.dq[k]) - h * ws.vlo[k];
-        }
-        let dq = body_nodes(&ws.acc, b);
-        let mut r = [Vec3::zeros(); 4];
-        r[0] = dq[0] * br.mass - g * (hh * br.mass);
-        for i in 0..3 {
-            r[i + 1] = dq[1] * br.e[(i, 0)] + dq[2] * br.e[(i, 1)] + dq[3] * br.e[(i, 2)];
-        }
-        for k in 0..4 {
-            write3(&mut ws.rn, 12 * b + 3 * k, &r[k]);
-        }
-        if jac {
-            let c = &mut ws.cbody[b];
-            c.fill(0.0);
-            c[0] = br.mass;
-            for i in 0..3 {
-                for j in 0..3 {
-                    c[4 * (i + 1) + j + 1] = br.e[(i, j)];
-                }
-            }
-            ws.xbody[b].fill(0.0);
-        }
-        write3(&mut ws.mom, 3 * b, &Vec3::zeros());
-    }
-    for &(b, at) in &model.body_forces {
-        let f = Vec3::new(held.inputs[at], held.inputs[at + 1], held.inputs[at + 2]);
-        let r = read3(&ws.rn, 12 * b) - f * hh;
-        write3(&mut ws.rn, 12 * b, &r);
-    }
+    inertia_and_forces(model, ws, held, h, jac);
     // joint rows: μ ∇g(q̄) into R̃, g(q) residual, Jacobian columns/rows and node couplings
     let mut res = 0.0_f64;
     let gscale = 1.0 / model.lc.min(1.0);
@@ -177,35 +142,9 @@ pub(crate) fn evaluate(model: &Model, ws: &mut Work, held: &Held, h: f64, mode: 
             if jt.input.is_some() || held.stiffness[j] != 0.0 || held.damping[j] != 0.0 {
                 joint_loads(model, ws, held, j, h, jac, &p, &mut acc);
             }
-            // node forces of this joint into R̃
-            if let Some(a) = a {
-                for k in 0..4 {
-                    let v = read3(&ws.rn, 12 * a + 3 * k) + acc.fa[k];
-                    write3(&mut ws.rn, 12 * a + 3 * k, &v);
-                }
-            }
-            for k in 0..4 {
-                let v = read3(&ws.rn, 12 * bb + 3 * k) + acc.fb[k];
-                write3(&mut ws.rn, 12 * bb + 3 * k, &v);
-            }
-            if jac {
-                for (x, y) in ws.xbody[bb].iter_mut().zip(&acc.x_bb) {
-                    *x += y;
-                }
+            if apply_joint(ws, &p, &mut acc, jac) {
                 if let Some(a) = a {
-                    for (x, y) in ws.xbody[a].iter_mut().zip(&acc.x_aa) {
-                        *x += y;
-                    }
-                    // the extra blocks complete in place (zeroed again for the next joint)
-                    node_block(&acc.cab, dbar_a, d_b, &mut acc.x_ab);
                     sink.body_body(a, bb, &acc.x_ab);
-                    let mut cba = [0.0; 16];
-                    for n in 0..4 {
-                        for m in 0..4 {
-                            cba[4 * n + m] = acc.cab[4 * m + n];
-                        }
-                    }
-                    node_block(&cba, dbar_b, d_a, &mut acc.x_ba);
                     sink.body_body(bb, a, &acc.x_ba);
                 }
             }
@@ -217,6 +156,87 @@ pub(crate) fn evaluate(model: &Model, ws: &mut Work, held: &Held, h: f64, mode: 
     ws.border = sink_border;
     res = res.max(project_bodies(model, ws, held, hh, mode, nd));
     Norms { res }
+}
+
+/// The inertia and gravity terms of every body's node residual `ws.rn` (and `ws.acc`; in a
+/// Jacobian pass its node coupling `ws.cbody`, cleared `ws.xbody`), joint torques `ws.mom`
+/// cleared, and the body forces.
+pub(crate) fn inertia_and_forces(model: &Model, ws: &mut Work, held: &Held, h: f64, jac: bool) {
+    let nb = model.bodies.len();
+    let hh = 0.5 * h * h;
+    let g = model.def().gravity;
+    // body inertia and applied forces, node form
+    for b in 0..nb {
+        let br = &model.bodies[b];
+        // a = Δq − h vₙ with one rounding (fused multiply-add) plus the low part of vₙ
+        for k in 12 * b..12 * b + 12 {
+            ws.acc[k] = (-h).mul_add(ws.vn[k], ws.dq[k]) - h * ws.vlo[k];
+        }
+        let dq = body_nodes(&ws.acc, b);
+        let mut r = [Vec3::zeros(); 4];
+        r[0] = dq[0] * br.mass - g * (hh * br.mass);
+        for i in 0..3 {
+            r[i + 1] = dq[1] * br.e[(i, 0)] + dq[2] * br.e[(i, 1)] + dq[3] * br.e[(i, 2)];
+        }
+        for k in 0..4 {
+            write3(&mut ws.rn, 12 * b + 3 * k, &r[k]);
+        }
+        if jac {
+            let c = &mut ws.cbody[b];
+            c.fill(0.0);
+            c[0] = br.mass;
+            for i in 0..3 {
+                for j in 0..3 {
+                    c[4 * (i + 1) + j + 1] = br.e[(i, j)];
+                }
+            }
+            ws.xbody[b].fill(0.0);
+        }
+        write3(&mut ws.mom, 3 * b, &Vec3::zeros());
+    }
+    for &(b, at) in &model.body_forces {
+        let f = Vec3::new(held.inputs[at], held.inputs[at + 1], held.inputs[at + 2]);
+        let r = read3(&ws.rn, 12 * b) - f * hh;
+        write3(&mut ws.rn, 12 * b, &r);
+    }
+}
+
+/// Adds what joint `p` accumulated in `acc` (its loads and, in the multiplier form, its rows)
+/// to the node residual and, if `jac`, to the bodies' diagonal blocks; completes the coupling
+/// blocks `acc.x_ab` (parent rows, child columns) and `acc.x_ba`. True if those are to be
+/// used (a Jacobian pass of a joint with a parent body).
+pub(crate) fn apply_joint(ws: &mut Work, p: &Pair, acc: &mut Acc, jac: bool) -> bool {
+    let (a, bb) = (p.a, p.b);
+    if let Some(a) = a {
+        for k in 0..4 {
+            let v = read3(&ws.rn, 12 * a + 3 * k) + acc.fa[k];
+            write3(&mut ws.rn, 12 * a + 3 * k, &v);
+        }
+    }
+    for k in 0..4 {
+        let v = read3(&ws.rn, 12 * bb + 3 * k) + acc.fb[k];
+        write3(&mut ws.rn, 12 * bb + 3 * k, &v);
+    }
+    if !jac {
+        return false;
+    }
+    for (x, y) in ws.xbody[bb].iter_mut().zip(&acc.x_bb) {
+        *x += y;
+    }
+    let Some(a) = a else { return false };
+    for (x, y) in ws.xbody[a].iter_mut().zip(&acc.x_aa) {
+        *x += y;
+    }
+    // the extra blocks complete in place (zeroed again for the next joint)
+    node_block(&acc.cab, &p.dbar_a, &p.d_b, &mut acc.x_ab);
+    let mut cba = [0.0; 16];
+    for n in 0..4 {
+        for m in 0..4 {
+            cba[4 * n + m] = acc.cab[4 * m + n];
+        }
+    }
+    node_block(&cba, &p.dbar_b, &p.d_a, &mut acc.x_ba);
+    true
 }
 
 #[cfg(test)]

@@ -141,7 +141,16 @@ fn robust_stage(
     depth: usize,
     stats: &mut StepStats,
 ) -> Result<(), StepError> {
-    match stage(model, ws, held, h) {
+    // the reduced iteration first where it applies; a stage it does not converge is redone
+    // in the multiplier form (same equations, same solution), then halved
+    let reduced = model.uses_reduced_solver();
+    let mut first = stage(model, ws, held, h, reduced);
+    if reduced {
+        if let Err(StepError::NoConvergence { .. } | StepError::Singular) = first {
+            first = stage(model, ws, held, h, false);
+        }
+    }
+    match first {
         Ok(s) => {
             stats.iterations += s.iterations;
             stats.factorizations += s.factorizations;
@@ -160,7 +169,13 @@ fn robust_stage(
 }
 
 /// One EM stage of size `h` (may be negative inside the composition) on the workspace.
-fn stage(model: &Model, ws: &mut Work, held: &Held, h: f64) -> Result<StepStats, StepError> {
+fn stage(
+    model: &Model,
+    ws: &mut Work,
+    held: &Held,
+    h: f64,
+    reduced: bool,
+) -> Result<StepStats, StepError> {
     let nb = model.bodies.len();
     // predictor: mean velocities over the stage extrapolated linearly in time from the nodal
     // ones and the previous stage's means (first stage: the nodal ones), Cayley rotation
@@ -199,6 +214,58 @@ fn stage(model: &Model, ws: &mut Work, held: &Held, h: f64) -> Result<StepStats,
     }
     let tol = model.settings().tolerance;
     let chord_accept = (CHORD_ACCEPT * tol).max(FLOOR_SHARE * f64::EPSILON * nb as f64);
+    let (it, factorizations, last_res) = if reduced {
+        let c = super::reduced::newton(model, ws, held, h, chord_accept)?;
+        (c.iterations, c.factorizations, c.error)
+    } else {
+        multiplier_newton(model, ws, held, h, chord_accept)?
+    };
+    // work and unwrapped angles at the converged iterate
+    let work = finish(model, ws, held, h);
+    if !work.is_finite() || ws.acc.iter().any(|x| !x.is_finite()) {
+        return Err(StepError::NonFinite("state"));
+    }
+    // v_{n+1} = vₙ + 2a/h in double-double (two-sum), a from the final evaluation
+    for k in 0..ws.q.len() {
+        let c = ws.vlo[k] + 2.0 * ws.acc[k] / h;
+        let (hi, lo) = two_sum(ws.vn[k], c);
+        ws.vn[k] = hi;
+        ws.vlo[k] = lo;
+        ws.qn[k] = ws.q[k];
+    }
+    let ih2 = 1.0 / (h * h);
+    for k in 0..ws.mu.len() {
+        ws.lam[k] = ws.mu[k] * ih2;
+    }
+    ws.ang.copy_from_slice(&ws.ang1);
+    ws.work += work;
+    // stage means for the next predictor: Δφ/h and θ/h
+    for b in 0..nb {
+        let o = 12 * b;
+        for k in 0..3 {
+            ws.hist[6 * b + k] = ws.dq[o + k] / h;
+            ws.hist[6 * b + 3 + k] = ws.theta[3 * b + k] / h;
+        }
+    }
+    ws.hprev = h;
+    Ok(StepStats {
+        iterations: it,
+        factorizations,
+        residual: last_res,
+    })
+}
+
+/// The Newton iteration of a stage in the multiplier form (body increments and joint
+/// multipliers) from the predictor: returns the iterations, the factorisations among them and
+/// the estimated error of the accepted iterate.
+fn multiplier_newton(
+    model: &Model,
+    ws: &mut Work,
+    held: &Held,
+    h: f64,
+    chord_accept: f64,
+) -> Result<(usize, usize, f64), StepError> {
+    let tol = model.settings().tolerance;
     let maxit = model.settings().max_iterations;
     let mut it = 0;
     let mut last_res: f64;
@@ -293,39 +360,7 @@ fn stage(model: &Model, ws: &mut Work, held: &Held, h: f64) -> Result<StepStats,
         };
         fresh = slow || it + 1 >= maxit;
     }
-    // work and unwrapped angles at the converged iterate
-    let work = finish(model, ws, held, h);
-    if !work.is_finite() || ws.acc.iter().any(|x| !x.is_finite()) {
-        return Err(StepError::NonFinite("state"));
-    }
-    // v_{n+1} = vₙ + 2a/h in double-double (two-sum), a from the final evaluation
-    for k in 0..ws.q.len() {
-        let c = ws.vlo[k] + 2.0 * ws.acc[k] / h;
-        let (hi, lo) = two_sum(ws.vn[k], c);
-        ws.vn[k] = hi;
-        ws.vlo[k] = lo;
-        ws.qn[k] = ws.q[k];
-    }
-    let ih2 = 1.0 / (h * h);
-    for k in 0..ws.mu.len() {
-        ws.lam[k] = ws.mu[k] * ih2;
-    }
-    ws.ang.copy_from_slice(&ws.ang1);
-    ws.work += work;
-    // stage means for the next predictor: Δφ/h and θ/h
-    for b in 0..nb {
-        let o = 12 * b;
-        for k in 0..3 {
-            ws.hist[6 * b + k] = ws.dq[o + k] / h;
-            ws.hist[6 * b + 3 + k] = ws.theta[3 * b + k] / h;
-        }
-    }
-    ws.hprev = h;
-    Ok(StepStats {
-        iterations: it,
-        factorizations,
-        residual: last_res,
-    })
+    Ok((it, factorizations, last_res))
 }
 
 /// Error-free sum: `a + b = s + e` exactly.

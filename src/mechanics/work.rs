@@ -2,6 +2,7 @@
 
 use super::border::Border;
 use super::model::Model;
+use super::reduced::RedWork;
 use super::solver::Block;
 
 /// Preallocated Newton workspace (all sized at `State::new`).
@@ -57,6 +58,8 @@ pub(crate) struct Work {
     pub dpiv: Vec<usize>,
     /// Dense right-hand side / solution.
     pub drhs: Vec<f64>,
+    /// Workspace of the reduced (joint-increment) iteration; empty for loop models.
+    pub red: RedWork,
 }
 
 impl Work {
@@ -93,6 +96,7 @@ impl Work {
             dense: vec![0.0; nd * nd],
             dpiv: vec![0; nd],
             drhs: vec![0.0; nd],
+            red: RedWork::new(model),
         }
     }
 }
