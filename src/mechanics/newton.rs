@@ -241,4 +241,4 @@ pub(crate) fn apply_joint(ws: &mut Work, p: &Pair, acc: &mut Acc, jac: bool) -> 
 
 #[cfg(test)]
 #[path = "newton_tests.rs"]
-mod tests;
+pub(crate) mod tests;

@@ -46,7 +46,7 @@ fn joint(
 
 /// A free body carrying a revolute child (motor) and a prismatic grandchild (actuator), with
 /// a spherical-jointed body on the free body, body torque and force loads, gravity.
-fn sample() -> ModelDef {
+pub(crate) fn sample() -> ModelDef {
     ModelDef {
         gravity: Vec3::new(0.0, 0.0, -9.81),
         bodies: vec![

@@ -26,6 +26,10 @@ pub struct StepStats {
     pub factorizations: usize,
     /// Final scaled residual.
     pub residual: f64,
+    /// Stages the reduced iteration (joint increments) handed to the multiplier form because
+    /// it did not converge or its root failed the energy identity; 0 for models that use the
+    /// multiplier form throughout.
+    pub fallbacks: usize,
 }
 
 /// Triple-jump coefficient `γ₁ = 1/(2 − 2^{1/3})`.
@@ -147,6 +151,7 @@ fn robust_stage(
     let mut first = stage(model, ws, held, h, reduced);
     if reduced {
         if let Err(StepError::NoConvergence { .. } | StepError::Singular) = first {
+            stats.fallbacks += 1;
             first = stage(model, ws, held, h, false);
         }
     }
@@ -252,6 +257,7 @@ fn stage(
         iterations: it,
         factorizations,
         residual: last_res,
+        fallbacks: 0,
     })
 }
 

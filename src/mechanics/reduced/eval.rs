@@ -12,10 +12,11 @@
 // index loops over coupled fixed-size arrays read closer to the formulas than iterator chains
 #![allow(clippy::needless_range_loop)]
 
+use super::super::assemble::read3;
 use super::super::body_terms::body_rows;
 use super::super::def::JointType;
 use super::super::joint_loads::{joint_loads, Acc, Pair};
-use super::super::kernels::body_nodes;
+use super::super::kernels::{body_nodes, rotation_increment};
 use super::super::model::Model;
 use super::super::newton::{apply_joint, inertia_and_forces};
 use super::super::work::{Held, Work};
@@ -181,4 +182,36 @@ fn geometric_stiffness(model: &Model, rw: &mut RedWork, b: usize, pm: &Map, qm: 
             rw.coupled[b] = true;
         }
     }
+}
+
+/// The energy identity of a solution: with the residual `R̃`, `ws.mom` of the last evaluation
+/// (at an iterate within the final update of `ws.q`), `Σ_b Δq_b·R̃_b + θ_b·(m_b − h²/2 τ_b)`
+/// is `−Σ μ Δg = 0` for a solution of the full equations (the constraint forces do no work
+/// while the constraints hold), so `E_{n+1} − E_n = W` exactly. A root of the reduced
+/// equations where the midpoint maps lose rank (a joint turned by about π within the stage)
+/// need not satisfy it; true if the identity holds to `1e-4` of the sum of the terms' sizes.
+pub(crate) fn balanced(model: &Model, ws: &Work, held: &Held, h: f64) -> bool {
+    let hh = 0.5 * h * h;
+    let (mut sum, mut size) = (0.0_f64, 0.0_f64);
+    for b in 0..model.bodies.len() {
+        let dq = body_nodes(&ws.dq, b);
+        for k in 0..4 {
+            let r = read3(&ws.rn, 12 * b + 3 * k);
+            let t = dq[k].dot(&r);
+            sum += t;
+            size += dq[k].norm() * r.norm();
+        }
+        let mut m = read3(&ws.mom, 3 * b);
+        for &(tb, at) in &model.body_torques {
+            if tb == b {
+                m -= Vec3::new(held.inputs[at], held.inputs[at + 1], held.inputs[at + 2]) * hh;
+            }
+        }
+        if m != Vec3::zeros() {
+            let th = rotation_increment(&body_nodes(&ws.qn, b), &body_nodes(&ws.q, b));
+            sum += th.dot(&m);
+            size += th.norm() * m.norm();
+        }
+    }
+    sum.abs() <= 1e-4 * size
 }

@@ -11,6 +11,7 @@
 
 use super::super::model::Model;
 use super::super::work::{Held, Work};
+use super::eval::balanced;
 use super::{evaluate, factor, prepare, solve, update, RedWork};
 use crate::mechanics::StepError;
 
@@ -48,7 +49,13 @@ pub(crate) fn newton(
     let mut rw = std::mem::take(&mut ws.red);
     let out = run(model, ws, &mut rw, held, h, chord_accept);
     ws.red = rw;
-    out
+    match out {
+        Ok(c) if !balanced(model, ws, held, h) => Err(StepError::NoConvergence {
+            iterations: c.iterations,
+            residual: f64::NAN,
+        }),
+        other => other,
+    }
 }
 
 fn run(
@@ -83,7 +90,6 @@ fn run(
         since_factor += 1;
         solve(model, rw);
         let upd = update(model, rw, ws);
-        if std::env::var("RDBG").is_ok() { eprintln!("it {it} fresh {fresh} res {res:e} upd {upd:e} acc {chord_accept:e}"); }
         if !upd.is_finite() {
             return Err(StepError::NonFinite("state"));
         }

@@ -119,7 +119,10 @@ impl Map {
     #[inline]
     pub fn a_mul(&self, x: &V6) -> V6 {
         let (v, w) = split(x);
-        join(&(v + w.cross(&self.e)), &if self.z { w } else { Vec3::zeros() })
+        join(
+            &(v + w.cross(&self.e)),
+            &if self.z { w } else { Vec3::zeros() },
+        )
     }
 
     /// `Aᵀ w` (child wrench about its centre of mass to the parent's).

@@ -20,7 +20,7 @@
 mod eval;
 mod iterate;
 mod maps;
-mod place;
+pub(crate) mod place;
 mod tree;
 
 use eval::evaluate;
@@ -154,3 +154,6 @@ impl RedWork {
     }
 }
 
+#[cfg(test)]
+#[path = "tests.rs"]
+mod tests;

@@ -39,6 +39,11 @@ fn log_so3(r: &Mat3) -> Vec3 {
     v * (s.atan2(c) / s)
 }
 
+/// `R − I` of the rotation nearest (by its rotation vector) to `I + e`.
+fn rotation(e: &Mat3) -> Mat3 {
+    expm1_so3(&log_so3(&(Mat3::identity() + e)))
+}
+
 /// `R − I` of the rotation that takes the directors `dₙ` of body `b` to those of `q`
 /// (`Σᵢ Δdᵢ dᵢₙᵀ`).
 fn increment(ws: &Work, b: usize) -> Mat3 {
@@ -63,7 +68,7 @@ pub(crate) fn prepare(model: &Model, rw: &mut RedWork, ws: &mut Work) {
     }
     for b in 0..model.bodies.len() {
         let Some(j) = model.tree_joint[b] else {
-            rw.eabs[b] = rw.e[b];
+            rw.eabs[b] = rotation(&rw.e[b]);
             let d = rw.dphi[b];
             rw.u[b][3..6].copy_from_slice(d.as_slice());
             continue;
@@ -88,7 +93,7 @@ pub(crate) fn prepare(model: &Model, rw: &mut RedWork, ws: &mut Work) {
         let slide = |k: usize| dr.dot(&(s.a[k] + ep * s.a[k]));
         let u = &mut rw.u[b];
         match g.kind {
-            T::Spherical => rw.eabs[b] = eb,
+            T::Spherical => rw.eabs[b] = rotation(&eb),
             T::Revolute => u[0] = rel.dot(&s.a[2]),
             T::Universal => {
                 u[0] = rel.dot(&s.a[0]);
@@ -130,10 +135,7 @@ pub(crate) fn place(model: &Model, rw: &mut RedWork, ws: &mut Work) {
                         let x2 = expm1_so3(&(s.b2 * u[1]));
                         (rel(x1 + x2 + x1 * x2), Vec3::zeros())
                     }
-                    T::Cylindrical => (
-                        rel(expm1_so3(&(s.a[2] * u[0]))),
-                        ep * s.r + along(2, u[1]),
-                    ),
+                    T::Cylindrical => (rel(expm1_so3(&(s.a[2] * u[0]))), ep * s.r + along(2, u[1])),
                     T::Prismatic => (ep, ep * s.r + along(2, u[0])),
                     T::Planar => (
                         rel(expm1_so3(&(s.a[2] * u[0]))),

@@ -73,7 +73,8 @@ fn invert(a: &mut M6, n: usize) -> bool {
                 p = i;
             }
         }
-        if !(a[p][k].abs() > 1e-14 * big) {
+        let pivot = a[p][k].abs();
+        if pivot.is_nan() || pivot <= 1e-14 * big {
             return false;
         }
         piv[k] = p;
@@ -102,7 +103,9 @@ fn invert(a: &mut M6, n: usize) -> bool {
             }
         }
     }
-    a.iter().take(n).all(|r| r[..n].iter().all(|x| x.is_finite()))
+    a.iter()
+        .take(n)
+        .all(|r| r[..n].iter().all(|x| x.is_finite()))
 }
 
 /// Factors the Newton matrix assembled by the last Jacobian pass (`rw.kd` is overwritten by
