@@ -66,16 +66,7 @@ fn pair(kind: JointType) -> ModelDef {
 
 #[test]
 fn every_joint_type_holds_its_constraints_and_moves() {
-    let kinds = [
-        JointType::Revolute,
-        JointType::Prismatic,
-        JointType::Cylindrical,
-        JointType::Universal,
-        JointType::Spherical,
-        JointType::Planar,
-        JointType::Fixed,
-    ];
-    for kind in kinds {
+    for kind in KINDS {
         for order in [2, 4] {
             let (m, mut s) = build(&pair(kind), settings(0.01, order));
             let q0 = s.outputs().joints[0].q.clone();

@@ -12,16 +12,6 @@ use triad::mechanics::{
     SolverSettings, State,
 };
 
-const KINDS: [JointType; 7] = [
-    JointType::Revolute,
-    JointType::Prismatic,
-    JointType::Cylindrical,
-    JointType::Universal,
-    JointType::Spherical,
-    JointType::Planar,
-    JointType::Fixed,
-];
-
 /// Body 0 free; body 1 on body 0 and body 2 on the world, both by `kind`, with offset frames,
 /// a skew axis, moving initial states, actuators, springs (not on spherical joints) and
 /// dampers.

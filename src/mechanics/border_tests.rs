@@ -17,6 +17,14 @@ use crate::mechanics::model::Model;
 use crate::mechanics::newton::{evaluate, resolve, solve, update, Held, Mode, Work};
 use crate::mechanics::projection::{project_velocities, ProjWork};
 
+/// The joints' damping and stiffness as defined (the `Held` parameters of a step).
+fn joint_parameters(def: &ModelDef) -> (Vec<f64>, Vec<f64>) {
+    (
+        def.joints.iter().map(|j| j.damping).collect(),
+        def.joints.iter().map(|j| j.stiffness).collect(),
+    )
+}
+
 fn body(mass: f64, com: Vec3, j: [f64; 3]) -> BodyDef {
     BodyDef {
         name: format!("b{mass}"),
@@ -184,8 +192,7 @@ fn assert_newton_agrees(def: &ModelDef, tol: f64, coupled: bool) -> f64 {
     let loops = def.joints.iter().any(|j| j.loop_closing);
     assert_eq!(wb.border.is_active(), loops);
     assert!(wb.dense.is_empty());
-    let damping: Vec<f64> = def.joints.iter().map(|j| j.damping).collect();
-    let stiffness: Vec<f64> = def.joints.iter().map(|j| j.stiffness).collect();
+    let (damping, stiffness) = joint_parameters(def);
     let held = Held {
         inputs: &[],
         damping: &damping,
@@ -314,8 +321,7 @@ fn residual_mode_keeps_the_border() {
     let def = chain_loop(8, Some(2), AX);
     let m = Model::new(&def, SolverSettings::default()).expect("model");
     let mut ws = Work::new(&m);
-    let damping: Vec<f64> = def.joints.iter().map(|j| j.damping).collect();
-    let stiffness: Vec<f64> = def.joints.iter().map(|j| j.stiffness).collect();
+    let (damping, stiffness) = joint_parameters(&def);
     let held = Held {
         inputs: &[],
         damping: &damping,

@@ -32,9 +32,7 @@ use crate::math::Vec3;
 /// the energy its dampers dissipated (J).
 pub(crate) fn finish(model: &Model, ws: &mut Work, held: &Held, h: f64) -> f64 {
     let nb = model.bodies.len();
-    for k in 0..ws.q.len() {
-        ws.qbar[k] = ws.qn[k] + 0.5 * ws.dq[k];
-    }
+    ws.set_midpoint();
     for b in 0..nb {
         // a = Δq − h vₙ with one rounding (fused multiply-add) plus the low part of vₙ
         for k in 12 * b..12 * b + 12 {

@@ -117,6 +117,12 @@ impl Acc {
     }
 }
 
+/// Whether joint `j` carries any load (an actuator, a spring or a damper); most joints of a
+/// chain do not, and their load pass is skipped.
+pub(crate) fn loaded(model: &Model, held: &Held, j: usize) -> bool {
+    model.joints[j].input.is_some() || held.stiffness[j] != 0.0 || held.damping[j] != 0.0
+}
+
 /// Adds the loads of joint `j` (stage size `h`, s) at the pair's iterate to `acc` (and the
 /// consistent torques to `ws.mom`, the Hessian terms of the load rows to `ws.cbody`).
 #[allow(clippy::too_many_lines, clippy::too_many_arguments)]

@@ -28,7 +28,7 @@
 use super::assemble::{read3, write3};
 use super::body_terms::project_bodies;
 pub(crate) use super::increment::{resolve, solve, update};
-use super::joint_loads::{joint_loads, Acc, Pair};
+use super::joint_loads::{joint_loads, loaded, Acc, Pair};
 pub(crate) use super::kernels::{body_nodes, expm1_so3};
 use super::kernels::{node_block, Sink};
 use super::model::Model;
@@ -58,9 +58,7 @@ pub(crate) enum Mode {
 pub(crate) fn evaluate(model: &Model, ws: &mut Work, held: &Held, h: f64, mode: Mode) -> Norms {
     let jac = mode == Mode::Full;
     let hh = 0.5 * h * h;
-    for k in 0..ws.q.len() {
-        ws.qbar[k] = ws.qn[k] + 0.5 * ws.dq[k];
-    }
+    ws.set_midpoint();
     match mode {
         Mode::Full if model.dense => {
             ws.dense.fill(0.0);
@@ -139,7 +137,7 @@ pub(crate) fn evaluate(model: &Model, ws: &mut Work, held: &Held, h: f64, mode: 
             }
             // joint loads on the coordinates (actuators, springs, dampers); nothing to do for
             // a joint without any, the common case in a chain
-            if jt.input.is_some() || held.stiffness[j] != 0.0 || held.damping[j] != 0.0 {
+            if loaded(model, held, j) {
                 joint_loads(model, ws, held, j, h, jac, &p, &mut acc);
             }
             if apply_joint(ws, &p, &mut acc, jac) {

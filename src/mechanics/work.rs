@@ -63,6 +63,13 @@ pub(crate) struct Work {
 }
 
 impl Work {
+    /// Sets the midpoint `q̄ = qₙ + ½ Δq` of the iterate.
+    pub fn set_midpoint(&mut self) {
+        for k in 0..self.q.len() {
+            self.qbar[k] = self.qn[k] + 0.5 * self.dq[k];
+        }
+    }
+
     /// Workspace for `model`.
     pub fn new(model: &Model) -> Self {
         let nb = model.bodies.len();

@@ -8,6 +8,17 @@ use triad::mechanics::{
     ModelDef, SolverSettings, State,
 };
 
+/// Every joint type, in the order of `JointType`'s documentation.
+pub const KINDS: [JointType; 7] = [
+    JointType::Revolute,
+    JointType::Prismatic,
+    JointType::Cylindrical,
+    JointType::Universal,
+    JointType::Spherical,
+    JointType::Planar,
+    JointType::Fixed,
+];
+
 /// Scales a tolerance by the env knob `TRIAD_TOL_SCALE` (default 1).
 #[must_use]
 pub fn tol(x: f64) -> f64 {

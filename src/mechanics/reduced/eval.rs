@@ -15,7 +15,7 @@
 use super::super::assemble::read3;
 use super::super::body_terms::body_rows;
 use super::super::def::JointType;
-use super::super::joint_loads::{joint_loads, Acc, Pair};
+use super::super::joint_loads::{joint_loads, loaded, Acc, Pair};
 use super::super::kernels::{body_nodes, rotation_increment};
 use super::super::model::Model;
 use super::super::newton::{apply_joint, inertia_and_forces};
@@ -59,9 +59,7 @@ pub(crate) fn evaluate(
     jac: bool,
 ) -> f64 {
     let hh = 0.5 * h * h;
-    for k in 0..ws.q.len() {
-        ws.qbar[k] = ws.qn[k] + 0.5 * ws.dq[k];
-    }
+    ws.set_midpoint();
     inertia_and_forces(model, ws, held, h, jac);
     let mut acc = Acc::new();
     for (j, jt) in model.joints.iter().enumerate() {
@@ -71,7 +69,7 @@ pub(crate) fn evaluate(
             rw.kcp[c] = [[0.0; 6]; 6];
             rw.kpc[c] = [[0.0; 6]; 6];
         }
-        if jt.input.is_none() && held.stiffness[j] == 0.0 && held.damping[j] == 0.0 {
+        if !loaded(model, held, j) {
             continue;
         }
         let p = Pair::new(ws, jt.parent, c);

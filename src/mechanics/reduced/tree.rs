@@ -16,15 +16,12 @@
 #![allow(clippy::needless_range_loop)]
 
 use super::super::model::Model;
+use super::super::small_mat::{self, amax, mul_vec};
 use super::maps::{Map, V6};
 use super::RedWork;
 use crate::math::Vec3;
 
 type M6 = [[f64; 6]; 6];
-
-fn mat_vec(k: &M6, x: &V6) -> V6 {
-    std::array::from_fn(|i| (0..6).map(|j| k[i][j] * x[j]).sum())
-}
 
 /// `X A` for the map's `A = [I −ê; 0 Z]` (row `i`: `[x_f, e × x_f + Z x_m]`).
 fn right_a(x: &M6, m: &Map) -> M6 {
@@ -53,59 +50,29 @@ fn left_at(m: &Map, x: &M6) -> M6 {
     out
 }
 
-/// In-place inverse of the leading `n × n` block (Gauss–Jordan, partial pivoting); false if
-/// a pivot is not above `1e-14` times the largest entry or the result is not finite.
+/// In-place inverse of the leading `n × n` block by the supernode kernel
+/// (`small_mat::invert`); false if a pivot is not above `1e-14` times the largest entry.
 fn invert(a: &mut M6, n: usize) -> bool {
-    let big = (0..n)
-        .flat_map(|i| (0..n).map(move |j| (i, j)))
-        .fold(0.0_f64, |m, (i, j)| m.max(a[i][j].abs()));
-    if n == 0 {
-        return true;
-    }
-    if !(big.is_finite() && big > 0.0) {
-        return false;
-    }
-    let mut piv = [0usize; 6];
-    for k in 0..n {
-        let mut p = k;
-        for i in k + 1..n {
-            if a[i][k].abs() > a[p][k].abs() {
-                p = i;
-            }
-        }
-        let pivot = a[p][k].abs();
-        if pivot.is_nan() || pivot <= 1e-14 * big {
+    fn lead<const N: usize>(a: &mut M6) -> bool {
+        let mut m: [[f64; N]; N] = std::array::from_fn(|i| std::array::from_fn(|j| a[i][j]));
+        let big = amax(&m);
+        if !(big.is_finite() && big > 0.0 && small_mat::invert(&mut m, 1e-14 * big)) {
             return false;
         }
-        piv[k] = p;
-        a.swap(k, p);
-        let inv = 1.0 / a[k][k];
-        a[k][k] = 1.0;
-        for j in 0..n {
-            a[k][j] *= inv;
+        for i in 0..N {
+            a[i][..N].copy_from_slice(&m[i]);
         }
-        let rk = a[k];
-        for i in 0..n {
-            if i != k {
-                let f = a[i][k];
-                a[i][k] = 0.0;
-                for j in 0..n {
-                    a[i][j] -= f * rk[j];
-                }
-            }
-        }
+        true
     }
-    for k in (0..n).rev() {
-        let p = piv[k];
-        if p != k {
-            for row in a.iter_mut().take(n) {
-                row.swap(k, p);
-            }
-        }
+    match n {
+        0 => true,
+        1 => lead::<1>(a),
+        2 => lead::<2>(a),
+        3 => lead::<3>(a),
+        4 => lead::<4>(a),
+        5 => lead::<5>(a),
+        _ => lead::<6>(a),
     }
-    a.iter()
-        .take(n)
-        .all(|r| r[..n].iter().all(|x| x.is_finite()))
 }
 
 /// Factors the Newton matrix assembled by the last Jacobian pass (`rw.kd` is overwritten by
@@ -123,7 +90,7 @@ pub(crate) fn factor(model: &Model, rw: &mut RedWork) -> bool {
         let xc = rw.xc[b];
         for c in 0..f {
             let sc = m.s_col(c);
-            ks[c] = mat_vec(&k, &sc);
+            ks[c] = mul_vec(&k, &sc);
             let mut col = [0.0; 6];
             mb.st_mul(&ks[c], &mut col);
             for r in 0..f {
@@ -184,7 +151,7 @@ pub(crate) fn factor(model: &Model, rw: &mut RedWork) -> bool {
         // K_p += H A − (H S) Y + Āᵀ K_cp
         let mut upd = right_a(&hm, &m);
         for c in 0..f {
-            let hs = mat_vec(&hm, &m.s_col(c));
+            let hs = mul_vec(&hm, &m.s_col(c));
             for i in 0..6 {
                 for j in 0..6 {
                     upd[i][j] -= hs[i] * y[c][j];
@@ -231,7 +198,7 @@ pub(crate) fn solve(model: &Model, rw: &mut RedWork) {
         rw.yv[b] = yv;
         if let Some(p) = model.parent[b] {
             let t = m.s_mul(&yv);
-            let ht = mat_vec(&rw.hm[b], &t);
+            let ht = mul_vec(&rw.hm[b], &t);
             let ab = mb.at_mul(&rw.bias[b]);
             for k in 0..6 {
                 rw.bias[p][k] += ab[k] - ht[k];
