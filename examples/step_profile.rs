@@ -1,9 +1,13 @@
 //! Callgrind driver of the core step: `cargo build --profile profiling --example step_profile`,
 //! then `valgrind --tool=callgrind target/profiling/examples/step_profile dp 2000` (or
-//! `chain100 200`, `fourbar 2000`, `chain100_loop 50`, `chain400_loop`, `chain1000_loop`; an optional third argument is the step
-//! size, default 1e-3). Also prints the wall-clock time per step of the run (release build:
+//! `chain100 200`, `chainN` for any N, `top`, `fourbar 2000`, `chain100_loop 50`,
+//! `chain400_loop`, `chain1000_loop`; an optional third argument is the step size, default
+//! 1e-3). Also prints the wall-clock time per step of the run (release build:
 //! `cargo run --release --example step_profile chain1000 2000`, the whole 2 s run of the peers'
-//! protocol). Same settings as `benches/step.rs` (order 2, h = 1e-3, tolerance 1e-10).
+//! protocol), the iterations, the stages handed to the multiplier form, and on stderr the
+//! energy balance `E − E₀ − work` at the end. Same settings as `benches/step.rs` (order 2,
+//! h = 1e-3, tolerance 1e-10). Environment: `TRIAD_MULTIPLIERS=1` solves trees in the
+//! multiplier form too; `TRIAD_TRACE=1` prints the energy balance after every step.
 use triad::mechanics::{step_state, Model, SolverSettings, State};
 
 #[path = "../tests/common/mod.rs"]
@@ -18,6 +22,9 @@ fn main() {
         "chain10" => common::chain(10),
         "chain100" => common::chain(100),
         "chain1000" => common::chain(1000),
+        c if c.starts_with("chain") && c[5..].parse::<usize>().is_ok() => {
+            common::chain(c[5..].parse().unwrap())
+        }
         "top" => common::heavy_top(),
         "fourbar" => common::four_bar(1.0, 3.0),
         "chain100_loop" => common::chain_loop(100, None, 0.0, 0.0),
@@ -33,19 +40,41 @@ fn main() {
         max_iterations: 20,
     };
     let t_build = std::time::Instant::now();
-    let m = Model::new(&def, s).expect("model");
+    let mut m = Model::new(&def, s).expect("model");
+    if std::env::var_os("TRIAD_MULTIPLIERS").is_some() {
+        m.set_reduced_solver(false);
+    }
     eprintln!("model built in {:.3} s", t_build.elapsed().as_secs_f64());
     let mut st = State::new(&m);
-    let (mut it, mut fac) = (0, 0);
+    let e0 = st.outputs().energy;
+    let (mut it, mut fac, mut fb) = (0, 0, 0);
     let t0 = std::time::Instant::now();
     for _ in 0..n {
         let s = step_state(&m, &mut st, h).expect("step");
+        if std::env::var_os("TRIAD_TRACE").is_some() {
+            st.refresh_outputs(&m);
+            let o = st.outputs();
+            eprintln!(
+                "trace {} {:.3e} {}",
+                it,
+                o.energy - e0 - o.work,
+                s.iterations
+            );
+        }
         it += s.iterations;
         fac += s.factorizations;
+        fb += s.fallbacks;
     }
     let us = t0.elapsed().as_secs_f64() * 1e6 / n as f64;
+    st.refresh_outputs(&m);
+    let o = st.outputs();
+    eprintln!(
+        "energy: E0 = {e0:.6e} J, E − E0 − work = {:.3e} J, constraint residual {:.1e}",
+        o.energy - e0 - o.work,
+        o.constraint_residual
+    );
     println!(
-        "{which}: {n} steps, {:.3} iterations ({:.3} with a fresh Jacobian) per step, {us:.2} µs per step",
+        "{which}: {n} steps, {:.3} iterations ({:.3} with a fresh Jacobian) per step, {fb} fallbacks, {us:.2} µs per step",
         it as f64 / n as f64,
         fac as f64 / n as f64
     );

@@ -31,6 +31,7 @@ pub mod loops;
 mod model;
 mod newton;
 mod outputs;
+mod predictor;
 mod projection;
 mod reduced;
 mod redundancy;

@@ -280,7 +280,7 @@ impl Model {
             naive_torque: false,
         };
         super::assemble::build(&mut model, &joint_input)?;
-        model.reduced = super::reduced::covers(&model);
+        model.reduced = super::reduced::suits(&model);
         Ok(model)
     }
 
@@ -344,15 +344,15 @@ impl Model {
 
     /// Whether steps solve the reduced equations in the joint increments (discrete null-space
     /// method, theory.md §4.5) before the multiplier form: true as built for models without
-    /// loop-closing joints.
+    /// loop-closing joints whose longest path from a root has at most 200 joints.
     #[must_use]
     pub fn uses_reduced_solver(&self) -> bool {
         self.reduced && !self.dense
     }
 
     /// Test-only: `false` solves every stage in the multiplier form (body increments and joint
-    /// multipliers), the oracle of the reduced iteration; `true` restores the default where
-    /// the model allows it. Never use outside tests.
+    /// multipliers), the oracle of the reduced iteration; `true` solves every tree in the
+    /// reduced form, however deep. Never use outside tests.
     #[doc(hidden)]
     pub fn set_reduced_solver(&mut self, on: bool) {
         self.reduced = on && super::reduced::covers(self);

@@ -29,7 +29,7 @@ use super::assemble::{read3, write3};
 use super::body_terms::project_bodies;
 pub(crate) use super::increment::{resolve, solve, update};
 use super::joint_loads::{joint_loads, loaded, Acc, Pair};
-pub(crate) use super::kernels::{body_nodes, expm1_so3};
+pub(crate) use super::kernels::body_nodes;
 use super::kernels::{node_block, Sink};
 use super::model::Model;
 use super::sparse_row::Side;

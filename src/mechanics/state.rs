@@ -5,6 +5,7 @@ use super::model::Model;
 use super::newton::Work;
 use super::outputs::Outputs;
 use super::projection::{project_velocities, ProjWork};
+use super::work::HISTORY;
 
 /// State of one simulation run. `Clone` is a complete snapshot.
 #[derive(Clone, Debug)]
@@ -23,10 +24,12 @@ pub struct State {
     pub(crate) angles: Vec<f64>,
     /// Accumulated work of inputs minus damping dissipation, J.
     pub(crate) work: f64,
-    /// Predictor history: mean rates of the last stage, 6 per body.
+    /// Predictor history: mean rates of the last [`HISTORY`] stages, 6 per body and stage.
     pub(crate) hist: Vec<f64>,
-    /// Size of the last stage, s (0: none).
-    pub(crate) hprev: f64,
+    /// Sizes of those stages, newest first, s (0: none).
+    pub(crate) hprev: [f64; HISTORY],
+    /// Stages left in which the reduced iteration refreshes its Newton matrix early.
+    pub(crate) eager: u32,
     pub(crate) inputs: Vec<f64>,
     pub(crate) damping: Vec<f64>,
     pub(crate) stiffness: Vec<f64>,
@@ -50,8 +53,9 @@ impl State {
             lam: vec![0.0; model.nrows],
             angles: model.angles0.clone(),
             work: 0.0,
-            hist: vec![0.0; 6 * model.body_count()],
-            hprev: 0.0,
+            hist: vec![0.0; 6 * HISTORY * model.body_count()],
+            hprev: [0.0; HISTORY],
+            eager: 0,
             inputs: vec![0.0; model.inputs().len()],
             damping: def.joints.iter().map(|j| j.damping).collect(),
             stiffness: def.joints.iter().map(|j| j.stiffness).collect(),
@@ -146,9 +150,19 @@ impl State {
         &self.v
     }
 
+    /// Test-only: forgets the predictor's history and the iteration's memory, as after
+    /// [`State::new`]; the next steps converge to the same solution (to the solver's
+    /// tolerance) from a poorer start. Never use outside tests.
+    #[doc(hidden)]
+    pub fn forget_history(&mut self) {
+        self.hist.fill(0.0);
+        self.hprev = [0.0; HISTORY];
+        self.eager = 0;
+    }
+
     /// Every number that determines the future of this state (time, q, v, multipliers used as
     /// the Newton start, inputs, tunable parameters, accumulated work, unwrapping memory), flat:
-    /// `[t, q.., v.., v_lo.., λ/2.., angles.., work, hist.., h_prev, inputs.., damping.., stiffness..]`.
+    /// `[t, q.., v.., v_lo.., λ/2.., angles.., work, hist.., h_prev.., eager, inputs.., damping.., stiffness..]`.
     #[must_use]
     pub fn snapshot(&self) -> Vec<f64> {
         let mut out = Vec::with_capacity(self.snapshot_len());
@@ -160,7 +174,8 @@ impl State {
         out.extend_from_slice(&self.angles);
         out.push(self.work);
         out.extend_from_slice(&self.hist);
-        out.push(self.hprev);
+        out.extend_from_slice(&self.hprev);
+        out.push(f64::from(self.eager));
         out.extend_from_slice(&self.inputs);
         out.extend_from_slice(&self.damping);
         out.extend_from_slice(&self.stiffness);
@@ -168,7 +183,8 @@ impl State {
     }
 
     fn snapshot_len(&self) -> usize {
-        3 + self.q.len()
+        3 + HISTORY
+            + self.q.len()
             + self.hist.len()
             + 2 * self.v.len()
             + self.lam.len()
@@ -205,14 +221,22 @@ impl State {
         let mut w = [0.0];
         take(&mut w);
         take(&mut self.hist);
-        let mut hp = [0.0];
+        let mut hp = [0.0; HISTORY];
         take(&mut hp);
+        let mut eager = [0.0];
+        take(&mut eager);
         take(&mut self.inputs);
         take(&mut self.damping);
         take(&mut self.stiffness);
         self.t = t[0];
         self.work = w[0];
-        self.hprev = hp[0];
+        self.hprev = hp;
+        // a count the snapshot wrote (small, non-negative); anything else starts afresh
+        self.eager = if (0.0..=1e6).contains(&eager[0]) {
+            eager[0] as u32
+        } else {
+            0
+        };
         self.refresh_outputs(model);
         Ok(())
     }

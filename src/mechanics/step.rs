@@ -1,19 +1,19 @@
 //! One energy–momentum step (order 2) or its triple-jump composition (order 4).
 //!
 //! A stage of size `h` solves the scaled EM equations (see `newton`) from the predictor
-//! `φ + h v̄`, `dᵢ ← cay(h ω̄) dᵢ` (mean rates extrapolated from the nodal ones and the previous
-//! stage's), `μ = h² λₙ/2`, then sets `v_{n+1} = (2/h)(q_{n+1} − qₙ) − vₙ`.
+//! `φ + h v̄`, `dᵢ ← cay(h ω̄) dᵢ` (mean rates extrapolated from the previous stages', see
+//! `predictor`), `μ = h² λₙ/2`, then sets `v_{n+1} = (2/h)(q_{n+1} − qₙ) − vₙ`.
 //! Order 4 is `Φ_{γ₁h} ∘ Φ_{γ₂h} ∘ Φ_{γ₁h}` with `γ₁ = 1/(2 − 2^{1/3})`, `γ₂ = 1 − 2γ₁`
 //! (theory.md §4.8); every stage is itself an EM step, so the conservation laws hold exactly.
 //! All work happens on workspace copies; the state is written only after every stage converged.
 // index loops over coupled fixed-size arrays read closer to the formulas than iterator chains
 #![allow(clippy::needless_range_loop)]
 
-use super::assemble::{read3, write3};
 use super::error::StepError;
 use super::finish::finish;
 use super::model::Model;
-use super::newton::{evaluate, expm1_so3, resolve, solve, update, Held, Mode, Work};
+use super::newton::{evaluate, resolve, solve, update, Held, Mode, Work};
+use super::predictor::{predict, record};
 use super::state::State;
 
 /// Statistics of one step.
@@ -81,6 +81,7 @@ pub fn step_state(model: &Model, state: &mut State, h: f64) -> Result<StepStats,
     ws.work = state.work;
     ws.hist.copy_from_slice(&state.hist);
     ws.hprev = state.hprev;
+    ws.eager = state.eager;
     let held = Held {
         inputs: &state.inputs,
         damping: &state.damping,
@@ -105,6 +106,7 @@ pub fn step_state(model: &Model, state: &mut State, h: f64) -> Result<StepStats,
     state.work = ws.work;
     state.hist.copy_from_slice(&ws.hist);
     state.hprev = ws.hprev;
+    state.eager = ws.eager;
     state.t += h;
     Ok(stats)
 }
@@ -182,41 +184,7 @@ fn stage(
     reduced: bool,
 ) -> Result<StepStats, StepError> {
     let nb = model.bodies.len();
-    // predictor: mean velocities over the stage extrapolated linearly in time from the nodal
-    // ones and the previous stage's means (first stage: the nodal ones), Cayley rotation
-    let ratio = if ws.hprev != 0.0 { h / ws.hprev } else { 0.0 };
-    for b in 0..nb {
-        let o = 12 * b;
-        let vphi = read3(&ws.vn, o);
-        let vbar = vphi + (vphi - read3(&ws.hist, 6 * b)) * ratio;
-        let inc = vbar * h;
-        write3(&mut ws.dq, o, &inc);
-        write3(&mut ws.q, o, &(read3(&ws.qn, o) + inc));
-        let mut w = crate::math::Vec3::zeros();
-        for i in 0..3 {
-            w += read3(&ws.qn, o + 3 + 3 * i).cross(&read3(&ws.vn, o + 3 + 3 * i));
-        }
-        w *= 0.5;
-        let wbar = w + (w - read3(&ws.hist, 6 * b + 3)) * ratio;
-        // Cayley vector θ = h ω̄ ↔ rotation angle 2 atan(|θ|/2)
-        let th = wbar * h;
-        let n = th.norm();
-        let rv = if n > 0.0 {
-            th * (2.0 * (0.5 * n).atan() / n)
-        } else {
-            th
-        };
-        let em1 = expm1_so3(&rv);
-        for i in 0..3 {
-            let dn = read3(&ws.qn, o + 3 + 3 * i);
-            let inc = em1 * dn;
-            write3(&mut ws.dq, o + 3 + 3 * i, &inc);
-            write3(&mut ws.q, o + 3 + 3 * i, &(dn + inc));
-        }
-    }
-    for k in 0..ws.mu.len() {
-        ws.mu[k] = ws.lam[k] * h * h;
-    }
+    predict(model, ws, h);
     let tol = model.settings().tolerance;
     let chord_accept = (CHORD_ACCEPT * tol).max(FLOOR_SHARE * f64::EPSILON * nb as f64);
     let (it, factorizations, last_res) = if reduced {
@@ -244,15 +212,7 @@ fn stage(
     }
     ws.ang.copy_from_slice(&ws.ang1);
     ws.work += work;
-    // stage means for the next predictor: Δφ/h and θ/h
-    for b in 0..nb {
-        let o = 12 * b;
-        for k in 0..3 {
-            ws.hist[6 * b + k] = ws.dq[o + k] / h;
-            ws.hist[6 * b + 3 + k] = ws.theta[3 * b + k] / h;
-        }
-    }
-    ws.hprev = h;
+    record(ws, nb, h);
     Ok(StepStats {
         iterations: it,
         factorizations,

@@ -5,6 +5,9 @@ use super::model::Model;
 use super::reduced::RedWork;
 use super::solver::Block;
 
+/// Stages of predictor history kept (mean rates and sizes).
+pub const HISTORY: usize = 6;
+
 /// Preallocated Newton workspace (all sized at `State::new`).
 #[derive(Clone, Debug)]
 pub(crate) struct Work {
@@ -23,10 +26,14 @@ pub(crate) struct Work {
     pub ang: Vec<f64>,
     /// Accumulated work at the stage start, J.
     pub work: f64,
-    /// Mean rates of the last stage `(Δφ/h, θ/h)`, 6 per body (predictor history).
+    /// Mean rates `(Δφ/h, θ/h)` of the last [`HISTORY`] stages, newest first: 6 per body and
+    /// stage, `[stage][body][6]` (predictor history).
     pub hist: Vec<f64>,
-    /// Size of the last stage, s (0: no history).
-    pub hprev: f64,
+    /// Sizes of those stages, newest first, s (0: no history).
+    pub hprev: [f64; HISTORY],
+    /// Stages left in which the reduced iteration refreshes its Newton matrix at the second
+    /// iteration too (set when chord iterations stopped contracting).
+    pub eager: u32,
     /// Newton iterate.
     pub q: Vec<f64>,
     /// Increment `q − qₙ`, kept separately so that velocities do not suffer the cancellation
@@ -86,8 +93,9 @@ impl Work {
             lam: vec![0.0; nr],
             ang: model.angles0.clone(),
             work: 0.0,
-            hist: vec![0.0; 6 * nb],
-            hprev: 0.0,
+            hist: vec![0.0; 6 * HISTORY * nb],
+            hprev: [0.0; HISTORY],
+            eager: 0,
             q: model.q0.clone(),
             dq: vec![0.0; 12 * nb],
             qbar: model.q0.clone(),

@@ -1,13 +1,21 @@
-//! The reduced Newton iteration of one stage: chord iterations on the factors of one Jacobian
-//! pass, accepted when the estimated distance to the solution is at round-off.
+//! The reduced Newton iteration of one stage: a Newton iteration (matrix assembled and
+//! factored) followed by chord iterations on its factors, accepted when the estimated distance
+//! to the solution is at round-off.
 //!
-//! The Newton matrix leaves out the constraint forces' geometric stiffness, so every iterate
-//! (the first one included) converges linearly at the observed contraction `θ = |δₖ|/|δₖ₋₁|`;
-//! the distance of the updated iterate to the solution is about `θ|δₖ|/(1 − θ)`. It must be
-//! below the round-off bound of the multiplier form's chord iterates (`chord_accept`), since the
-//! conservation laws hold only as far as the equations are solved. A slow contraction
-//! refactors once at the current iterate; a stage that still does not contract, or exceeds
-//! the iteration budget, returns `NoConvergence` and is redone by the multiplier form.
+//! The matrix is the exact Jacobian for turning pairs (slides: see `eval`), so the first chord
+//! update is about quadratic in the first one, and later ones contract linearly at the observed
+//! `θ = |δₖ|/|δₖ₋₁|`; the distance of the updated iterate to the solution is about
+//! `θ|δₖ|/(1 − θ)`. It must be below the round-off bound of the multiplier form's chord iterates
+//! (`chord_accept`), since the conservation laws hold only as far as the equations are solved.
+//! Rules:
+//! - a contraction slower than [`REFACTOR`] refreshes the matrix at the current iterate, unless
+//!   the updates are at the round-off floor (there a slow ratio is noise);
+//! - when chord iterations stopped contracting, the next [`EAGER_STAGES`] stages refresh the
+//!   matrix at their second iteration too (long chains: the reduced equations are strongly
+//!   nonlinear, and chords from the predictor diverge where chords from the first Newton
+//!   iterate converge);
+//! - a fresh matrix whose first chord update contracts slower than [`GIVE_UP`], or the
+//!   iteration budget, returns `NoConvergence`: the stage is redone by the multiplier form.
 
 use super::super::model::Model;
 use super::super::work::{Held, Work};
@@ -20,6 +28,10 @@ const REFACTOR: f64 = 0.1;
 
 /// Contraction after a fresh factorisation above which the stage is handed back.
 const GIVE_UP: f64 = 0.5;
+
+/// Stages that refresh the matrix at their second iteration after chord iterations of a stage
+/// stopped contracting.
+const EAGER_STAGES: u32 = 16;
 
 /// Iterations after which the stage is handed back.
 const MAX_IT: usize = 12;
@@ -67,6 +79,10 @@ fn run(
     chord_accept: f64,
 ) -> Result<Converged, StepError> {
     prepare(model, rw, ws);
+    // after chord iterations stopped contracting, the next stages refresh the matrix at the
+    // second iteration too (Newton twice, then chords from a closer iterate)
+    let eager = ws.eager > 0;
+    ws.eager = ws.eager.saturating_sub(1);
     let maxit = model.settings().max_iterations.min(MAX_IT);
     let (mut it, mut factorizations) = (0, 0);
     let mut fresh = true;
@@ -113,7 +129,9 @@ fn run(
         }
         // the round-off floor: after contracting well the updates stop shrinking at a size set
         // by the number of bodies (as in the multiplier form's chord iterations)
-        best = best.min(theta);
+        if it > 1 {
+            best = best.min(theta);
+        }
         if it > 1 && theta >= 0.5 && best <= REFACTOR && upd <= 1e-2 * tol {
             return Ok(Converged {
                 iterations: it,
@@ -121,16 +139,18 @@ fn run(
                 error: upd,
             });
         }
-        if it >= maxit || (theta > GIVE_UP && since_factor == 1 && it > 1) {
+        if it >= maxit || (theta > GIVE_UP && since_factor == 2) {
             return Err(StepError::NoConvergence {
                 iterations: it,
                 residual: res.max(upd),
             });
         }
-        fresh = theta > REFACTOR && it > 1;
-        if fresh {
-            best = f64::INFINITY;
+        if theta > REFACTOR && since_factor >= 2 && it > 2 && upd > 1e-2 * tol {
+            ws.eager = EAGER_STAGES;
         }
+        // at the round-off floor a slow ratio is noise, not a stale matrix
+        let floor = upd <= 1e-2 * tol;
+        fresh = (theta > REFACTOR && it > 1 && !floor) || (eager && it == 1);
         prev = upd;
     }
 }
