@@ -48,10 +48,11 @@ fn main() {
     let mut st = State::new(&m);
     let e0 = st.outputs().energy;
     let (mut it, mut fac, mut fb) = (0, 0, 0);
+    let trace = std::env::var_os("TRIAD_TRACE").is_some();
     let t0 = std::time::Instant::now();
     for _ in 0..n {
         let s = step_state(&m, &mut st, h).expect("step");
-        if std::env::var_os("TRIAD_TRACE").is_some() {
+        if trace {
             st.refresh_outputs(&m);
             let o = st.outputs();
             eprintln!(

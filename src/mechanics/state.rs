@@ -5,7 +5,7 @@ use super::model::Model;
 use super::newton::Work;
 use super::outputs::Outputs;
 use super::projection::{project_velocities, ProjWork};
-use super::work::HISTORY;
+use super::work::{Memory, HISTORY};
 
 /// State of one simulation run. `Clone` is a complete snapshot.
 #[derive(Clone, Debug)]
@@ -28,8 +28,8 @@ pub struct State {
     pub(crate) hist: Vec<f64>,
     /// Sizes of those stages, newest first, s (0: none).
     pub(crate) hprev: [f64; HISTORY],
-    /// Stages left in which the reduced iteration refreshes its Newton matrix early.
-    pub(crate) eager: u32,
+    /// The solver's memory of the last stages.
+    pub(crate) memory: Memory,
     pub(crate) inputs: Vec<f64>,
     pub(crate) damping: Vec<f64>,
     pub(crate) stiffness: Vec<f64>,
@@ -55,7 +55,7 @@ impl State {
             work: 0.0,
             hist: vec![0.0; 6 * HISTORY * model.body_count()],
             hprev: [0.0; HISTORY],
-            eager: 0,
+            memory: Memory::default(),
             inputs: vec![0.0; model.inputs().len()],
             damping: def.joints.iter().map(|j| j.damping).collect(),
             stiffness: def.joints.iter().map(|j| j.stiffness).collect(),
@@ -157,12 +157,12 @@ impl State {
     pub fn forget_history(&mut self) {
         self.hist.fill(0.0);
         self.hprev = [0.0; HISTORY];
-        self.eager = 0;
+        self.memory = Memory::default();
     }
 
     /// Every number that determines the future of this state (time, q, v, multipliers used as
     /// the Newton start, inputs, tunable parameters, accumulated work, unwrapping memory), flat:
-    /// `[t, q.., v.., v_lo.., λ/2.., angles.., work, hist.., h_prev.., eager, inputs.., damping.., stiffness..]`.
+    /// `[t, q.., v.., v_lo.., λ/2.., angles.., work, hist.., h_prev.., memory (2), inputs.., damping.., stiffness..]`.
     #[must_use]
     pub fn snapshot(&self) -> Vec<f64> {
         let mut out = Vec::with_capacity(self.snapshot_len());
@@ -175,7 +175,7 @@ impl State {
         out.push(self.work);
         out.extend_from_slice(&self.hist);
         out.extend_from_slice(&self.hprev);
-        out.push(f64::from(self.eager));
+        out.extend_from_slice(&self.memory.to_f64());
         out.extend_from_slice(&self.inputs);
         out.extend_from_slice(&self.damping);
         out.extend_from_slice(&self.stiffness);
@@ -183,7 +183,7 @@ impl State {
     }
 
     fn snapshot_len(&self) -> usize {
-        3 + HISTORY
+        4 + HISTORY
             + self.q.len()
             + self.hist.len()
             + 2 * self.v.len()
@@ -223,20 +223,15 @@ impl State {
         take(&mut self.hist);
         let mut hp = [0.0; HISTORY];
         take(&mut hp);
-        let mut eager = [0.0];
-        take(&mut eager);
+        let mut memory = [0.0; 2];
+        take(&mut memory);
         take(&mut self.inputs);
         take(&mut self.damping);
         take(&mut self.stiffness);
         self.t = t[0];
         self.work = w[0];
         self.hprev = hp;
-        // a count the snapshot wrote (small, non-negative); anything else starts afresh
-        self.eager = if (0.0..=1e6).contains(&eager[0]) {
-            eager[0] as u32
-        } else {
-            0
-        };
+        self.memory = Memory::from_f64(memory);
         self.refresh_outputs(model);
         Ok(())
     }

@@ -81,7 +81,7 @@ pub fn step_state(model: &Model, state: &mut State, h: f64) -> Result<StepStats,
     ws.work = state.work;
     ws.hist.copy_from_slice(&state.hist);
     ws.hprev = state.hprev;
-    ws.eager = state.eager;
+    ws.memory = state.memory;
     let held = Held {
         inputs: &state.inputs,
         damping: &state.damping,
@@ -106,7 +106,7 @@ pub fn step_state(model: &Model, state: &mut State, h: f64) -> Result<StepStats,
     state.work = ws.work;
     state.hist.copy_from_slice(&ws.hist);
     state.hprev = ws.hprev;
-    state.eager = ws.eager;
+    state.memory = ws.memory;
     state.t += h;
     Ok(stats)
 }
@@ -132,6 +132,9 @@ const CHORD_ACCEPT: f64 = 1e-8;
 /// floor, is as converged as the iterate can be (for one body the bound stays ≈ 1e-18).
 const FLOOR_SHARE: f64 = 1e-2;
 
+/// Stages solved in the multiplier form after the reduced iteration handed one back.
+const MULTIPLIER_STAGES: u32 = 8;
+
 /// Deepest halving of a stage whose Newton iteration failed.
 const MAX_HALVINGS: usize = 3;
 
@@ -149,11 +152,16 @@ fn robust_stage(
 ) -> Result<(), StepError> {
     // the reduced iteration first where it applies; a stage it does not converge is redone
     // in the multiplier form (same equations, same solution), then halved
-    let reduced = model.uses_reduced_solver();
+    // in the multiplier form straight away for a while after a stage was handed back (large
+    // steps on long chains: the next stages would likely fail alike, at the cost of a failed
+    // reduced attempt each)
+    let reduced = model.uses_reduced_solver() && ws.memory.multipliers == 0;
+    ws.memory.multipliers = ws.memory.multipliers.saturating_sub(1);
     let mut first = stage(model, ws, held, h, reduced);
     if reduced {
         if let Err(StepError::NoConvergence { .. } | StepError::Singular) = first {
             stats.fallbacks += 1;
+            ws.memory.multipliers = MULTIPLIER_STAGES;
             first = stage(model, ws, held, h, false);
         }
     }

@@ -8,6 +8,43 @@ use super::solver::Block;
 /// Stages of predictor history kept (mean rates and sizes).
 pub const HISTORY: usize = 6;
 
+/// What the solver remembers of the last stages: counts of stages left in which it deviates
+/// from its default (part of the state and of its snapshot, so that a restored state repeats
+/// the original run exactly).
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub struct Memory {
+    /// Stages in which the reduced iteration refreshes its Newton matrix at the second
+    /// iteration too (set when chord iterations stopped contracting).
+    pub eager: u32,
+    /// Stages solved in the multiplier form straight away (set when the reduced iteration
+    /// handed a stage back: the next ones would likely fail alike).
+    pub multipliers: u32,
+}
+
+impl Memory {
+    /// As two numbers of a snapshot.
+    #[must_use]
+    pub fn to_f64(self) -> [f64; 2] {
+        [f64::from(self.eager), f64::from(self.multipliers)]
+    }
+
+    /// From two numbers of a snapshot (anything but a small non-negative count reads as 0).
+    #[must_use]
+    pub fn from_f64(x: [f64; 2]) -> Self {
+        let count = |v: f64| {
+            if (0.0..=1e6).contains(&v) {
+                v as u32
+            } else {
+                0
+            }
+        };
+        Self {
+            eager: count(x[0]),
+            multipliers: count(x[1]),
+        }
+    }
+}
+
 /// Preallocated Newton workspace (all sized at `State::new`).
 #[derive(Clone, Debug)]
 pub(crate) struct Work {
@@ -31,9 +68,8 @@ pub(crate) struct Work {
     pub hist: Vec<f64>,
     /// Sizes of those stages, newest first, s (0: no history).
     pub hprev: [f64; HISTORY],
-    /// Stages left in which the reduced iteration refreshes its Newton matrix at the second
-    /// iteration too (set when chord iterations stopped contracting).
-    pub eager: u32,
+    /// The iteration's memory of the last stages (see [`Memory`]).
+    pub memory: Memory,
     /// Newton iterate.
     pub q: Vec<f64>,
     /// Increment `q − qₙ`, kept separately so that velocities do not suffer the cancellation
@@ -95,7 +131,7 @@ impl Work {
             work: 0.0,
             hist: vec![0.0; 6 * HISTORY * nb],
             hprev: [0.0; HISTORY],
-            eager: 0,
+            memory: Memory::default(),
             q: model.q0.clone(),
             dq: vec![0.0; 12 * nb],
             qbar: model.q0.clone(),

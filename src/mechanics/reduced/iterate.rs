@@ -81,8 +81,8 @@ fn run(
     prepare(model, rw, ws);
     // after chord iterations stopped contracting, the next stages refresh the matrix at the
     // second iteration too (Newton twice, then chords from a closer iterate)
-    let eager = ws.eager > 0;
-    ws.eager = ws.eager.saturating_sub(1);
+    let eager = ws.memory.eager > 0;
+    ws.memory.eager = ws.memory.eager.saturating_sub(1);
     let maxit = model.settings().max_iterations.min(MAX_IT);
     let (mut it, mut factorizations) = (0, 0);
     let mut fresh = true;
@@ -146,7 +146,7 @@ fn run(
             });
         }
         if theta > REFACTOR && since_factor >= 2 && it > 2 && upd > 1e-2 * tol {
-            ws.eager = EAGER_STAGES;
+            ws.memory.eager = EAGER_STAGES;
         }
         // at the round-off floor a slow ratio is noise, not a stale matrix
         let floor = upd <= 1e-2 * tol;
