@@ -7,7 +7,8 @@
 //! protocol), the iterations, the stages handed to the multiplier form, and on stderr the
 //! energy balance `E − E₀ − work` at the end. Same settings as `benches/step.rs` (order 2,
 //! h = 1e-3, tolerance 1e-10). Environment: `TRIAD_MULTIPLIERS=1` solves trees in the
-//! multiplier form too; `TRIAD_TRACE=1` prints the energy balance after every step.
+//! multiplier form too; `TRIAD_TRACE=1` prints the energy balance after every step; `TRIAD_ORDER4=1` steps with the
+//! order-4 composition.
 use triad::mechanics::{step_state, Model, SolverSettings, State};
 
 #[path = "../tests/common/mod.rs"]
@@ -35,7 +36,11 @@ fn main() {
     let h: f64 = args.get(3).and_then(|x| x.parse().ok()).unwrap_or(1e-3);
     let s = SolverSettings {
         max_step: h,
-        order: 2,
+        order: if std::env::var_os("TRIAD_ORDER4").is_some() {
+            4
+        } else {
+            2
+        },
         tolerance: 1e-10,
         max_iterations: 20,
     };
