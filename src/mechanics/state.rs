@@ -5,7 +5,7 @@ use super::model::Model;
 use super::newton::Work;
 use super::outputs::Outputs;
 use super::projection::{project_velocities, ProjWork};
-use super::work::{Memory, HISTORY};
+use super::work::{tables, Memory, HISTORY, TABLES};
 
 /// State of one simulation run. `Clone` is a complete snapshot.
 #[derive(Clone, Debug)]
@@ -24,10 +24,10 @@ pub struct State {
     pub(crate) angles: Vec<f64>,
     /// Accumulated work of inputs minus damping dissipation, J.
     pub(crate) work: f64,
-    /// Predictor history: mean rates of the last [`HISTORY`] stages, 6 per body and stage.
+    /// Predictor history: difference tables of the stages' mean rates (see `Work::hist`).
     pub(crate) hist: Vec<f64>,
-    /// Sizes of those stages, newest first, s (0: none).
-    pub(crate) hprev: [f64; HISTORY],
+    /// Sizes of the stages of each table, newest first, s (0: none).
+    pub(crate) hprev: [[f64; HISTORY]; TABLES],
     /// The solver's memory of the last stages.
     pub(crate) memory: Memory,
     pub(crate) inputs: Vec<f64>,
@@ -53,8 +53,8 @@ impl State {
             lam: vec![0.0; model.nrows],
             angles: model.angles0.clone(),
             work: 0.0,
-            hist: vec![0.0; 6 * HISTORY * model.body_count()],
-            hprev: [0.0; HISTORY],
+            hist: vec![0.0; 6 * HISTORY * model.body_count() * tables(model.settings().order)],
+            hprev: [[0.0; HISTORY]; TABLES],
             memory: Memory::default(),
             inputs: vec![0.0; model.inputs().len()],
             damping: def.joints.iter().map(|j| j.damping).collect(),
@@ -156,7 +156,7 @@ impl State {
     #[doc(hidden)]
     pub fn forget_history(&mut self) {
         self.hist.fill(0.0);
-        self.hprev = [0.0; HISTORY];
+        self.hprev = [[0.0; HISTORY]; TABLES];
         self.memory = Memory::default();
     }
 
@@ -174,7 +174,7 @@ impl State {
         out.extend_from_slice(&self.angles);
         out.push(self.work);
         out.extend_from_slice(&self.hist);
-        out.extend_from_slice(&self.hprev);
+        out.extend_from_slice(self.hprev.as_flattened());
         out.extend_from_slice(&self.memory.to_f64());
         out.extend_from_slice(&self.inputs);
         out.extend_from_slice(&self.damping);
@@ -183,7 +183,7 @@ impl State {
     }
 
     fn snapshot_len(&self) -> usize {
-        4 + HISTORY
+        4 + HISTORY * TABLES
             + self.q.len()
             + self.hist.len()
             + 2 * self.v.len()
@@ -221,8 +221,8 @@ impl State {
         let mut w = [0.0];
         take(&mut w);
         take(&mut self.hist);
-        let mut hp = [0.0; HISTORY];
-        take(&mut hp);
+        let mut hp = [[0.0; HISTORY]; TABLES];
+        take(hp.as_flattened_mut());
         let mut memory = [0.0; 2];
         take(&mut memory);
         take(&mut self.inputs);

@@ -13,7 +13,7 @@ use super::error::StepError;
 use super::finish::finish;
 use super::model::Model;
 use super::newton::{evaluate, resolve, solve, update, Held, Mode, Work};
-use super::predictor::{predict, record};
+use super::predictor::{invalidate, predict, record};
 use super::state::State;
 
 /// Statistics of one step.
@@ -94,8 +94,10 @@ pub fn step_state(model: &Model, state: &mut State, h: f64) -> Result<StepStats,
     } else {
         &[1.0]
     };
-    for &g in stages {
-        robust_stage(model, ws, &held, g * h, 0, &mut stats)?;
+    let order4 = stages.len() > 1;
+    for (k, &g) in stages.iter().enumerate() {
+        let table = if order4 { 1 + k } else { 0 };
+        robust_stage(model, ws, &held, g * h, Some(table), 0, &mut stats)?;
     }
     // commit
     state.q.copy_from_slice(&ws.qn);
@@ -147,6 +149,7 @@ fn robust_stage(
     ws: &mut Work,
     held: &Held,
     h: f64,
+    table: Option<usize>,
     depth: usize,
     stats: &mut StepStats,
 ) -> Result<(), StepError> {
@@ -157,12 +160,12 @@ fn robust_stage(
     // reduced attempt each)
     let reduced = model.uses_reduced_solver() && ws.memory.multipliers == 0;
     ws.memory.multipliers = ws.memory.multipliers.saturating_sub(1);
-    let mut first = stage(model, ws, held, h, reduced);
+    let mut first = stage(model, ws, held, h, table, reduced);
     if reduced {
         if let Err(StepError::NoConvergence { .. } | StepError::Singular) = first {
             stats.fallbacks += 1;
             ws.memory.multipliers = MULTIPLIER_STAGES;
-            first = stage(model, ws, held, h, false);
+            first = stage(model, ws, held, h, table, false);
         }
     }
     match first {
@@ -176,8 +179,11 @@ fn robust_stage(
             if depth < MAX_HALVINGS && model.settings().max_iterations > 1 =>
         {
             let _ = e;
-            robust_stage(model, ws, held, 0.5 * h, depth + 1, stats)?;
-            robust_stage(model, ws, held, 0.5 * h, depth + 1, stats)
+            if let Some(t) = table {
+                invalidate(ws, t);
+            }
+            robust_stage(model, ws, held, 0.5 * h, None, depth + 1, stats)?;
+            robust_stage(model, ws, held, 0.5 * h, None, depth + 1, stats)
         }
         Err(e) => Err(e),
     }
@@ -189,10 +195,11 @@ fn stage(
     ws: &mut Work,
     held: &Held,
     h: f64,
+    table: Option<usize>,
     reduced: bool,
 ) -> Result<StepStats, StepError> {
     let nb = model.bodies.len();
-    predict(model, ws, h);
+    predict(model, ws, h, table);
     let tol = model.settings().tolerance;
     let chord_accept = (CHORD_ACCEPT * tol).max(FLOOR_SHARE * f64::EPSILON * nb as f64);
     let (it, factorizations, last_res) = if reduced {
@@ -220,7 +227,7 @@ fn stage(
     }
     ws.ang.copy_from_slice(&ws.ang1);
     ws.work += work;
-    record(ws, nb, h);
+    record(ws, nb, h, table);
     Ok(StepStats {
         iterations: it,
         factorizations,

@@ -8,6 +8,20 @@ use super::solver::Block;
 /// Stages of predictor history kept (mean rates and sizes).
 pub const HISTORY: usize = 6;
 
+/// Difference tables of the predictor: table 0 follows every stage, tables 1–3 the first,
+/// second and third stage of the order-4 composition (allocated for order-4 models only).
+pub const TABLES: usize = 4;
+
+/// Difference tables a model of this order uses.
+#[must_use]
+pub fn tables(order: u8) -> usize {
+    if order == 4 {
+        TABLES
+    } else {
+        1
+    }
+}
+
 /// What the solver remembers of the last stages: counts of stages left in which it deviates
 /// from its default (part of the state and of its snapshot, so that a restored state repeats
 /// the original run exactly).
@@ -63,11 +77,11 @@ pub(crate) struct Work {
     pub ang: Vec<f64>,
     /// Accumulated work at the stage start, J.
     pub work: f64,
-    /// Mean rates `(Δφ/h, θ/h)` of the last [`HISTORY`] stages, newest first: 6 per body and
-    /// stage, `[stage][body][6]` (predictor history).
+    /// Predictor history: backward differences of the mean rates `(Δφ/h, θ/h)` of the last
+    /// [`HISTORY`] stages, `[table][difference][body][6]` (see `predictor`).
     pub hist: Vec<f64>,
-    /// Sizes of those stages, newest first, s (0: no history).
-    pub hprev: [f64; HISTORY],
+    /// Sizes of the stages of each table, newest first, s (0: no history).
+    pub hprev: [[f64; HISTORY]; TABLES],
     /// The iteration's memory of the last stages (see [`Memory`]).
     pub memory: Memory,
     /// Newton iterate.
@@ -129,8 +143,8 @@ impl Work {
             lam: vec![0.0; nr],
             ang: model.angles0.clone(),
             work: 0.0,
-            hist: vec![0.0; 6 * HISTORY * nb],
-            hprev: [0.0; HISTORY],
+            hist: vec![0.0; 6 * HISTORY * nb * tables(model.settings().order)],
+            hprev: [[0.0; HISTORY]; TABLES],
             memory: Memory::default(),
             q: model.q0.clone(),
             dq: vec![0.0; 12 * nb],
