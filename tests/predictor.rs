@@ -122,7 +122,10 @@ fn order_four_stages_extrapolate_from_their_own_table() {
     assert_eq!((fb_a, fb_b), (0, 0));
     let per_step = it_a as f64 / 300.0;
     assert!(per_step <= 6.05, "{per_step} iterations per step");
-    assert!(it_a <= it_b, "{it_a} with history, {it_b} after forgetting it");
+    assert!(
+        it_a <= it_b,
+        "{it_a} with history, {it_b} after forgetting it"
+    );
     let dq = a
         .coordinates()
         .iter()
