@@ -117,10 +117,11 @@ pub(crate) fn covers(model: &Model) -> bool {
 /// equations compound the nonlinearity of every joint below a body (a 250 m, 1000-link chain
 /// turned by 1e-5 rad at its top moves its tip by 2.5 mm), so their Newton iteration needs
 /// more iterations and fresh matrices, and their subtree sums carry more round-off. Measured
-/// on the chainN models (h = 1e-3, 2 s): the reduced form is 1.6× faster at N = 100 and 1.3×
-/// at N = 300, slower at N = 1000 (5.5 iterations and 7 % of stages handed back, against 2.8
-/// iterations); its energy error over the run grows from 4e-14 (N = 100) to 2e-13 (N = 300)
-/// relative, against ≤ 3e-15 for the multiplier form.
+/// on the chainN models (h = 1e-3, 2 s): the reduced form is 1.6–1.9× faster at N = 100 and
+/// 1.3× at N = 300; at N = 1000 it is 8–16 % faster (4.7 iterations and 1.9 fresh matrices
+/// per step against 2.8 and 1.0, 3 % of the stages handed back), but its energy error over
+/// the run grows from 1e-14 (N = 100) to 2e-13 (N = 300) and 3.5e-13 (N = 1000) relative,
+/// where the multiplier form stays at ≤ 3e-15. Conservation to round-off comes first.
 pub(crate) const MAX_DEPTH: usize = 200;
 
 /// Whether the reduced iteration is the default for `model`: [`covers`] it and no path is
