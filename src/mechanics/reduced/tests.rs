@@ -94,7 +94,7 @@ fn assert_reduced_jacobian(def: &ModelDef, stiffness: &[f64], damping: &[f64], b
     assert!(factor(&model, &mut rw));
     let nb = model.bodies.len();
     let dofs: Vec<(usize, usize)> = (0..nb)
-        .flat_map(|b| (0..rw.q[b].f()).map(move |k| (b, k)))
+        .flat_map(|b| (0..rw.fq[b].f()).map(move |k| (b, k)))
         .collect();
     let (u0, e0) = (rw.u.clone(), rw.eabs.clone());
     let perturb = |rw: &mut RedWork, ws: &mut Work, (b, k): (usize, usize), eps: f64| {

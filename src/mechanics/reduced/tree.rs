@@ -78,16 +78,18 @@ fn invert(a: &mut M6, n: usize) -> bool {
 /// Factors the Newton matrix assembled by the last Jacobian pass (`rw.kd` is overwritten by
 /// the articulated blocks); false if a joint's `D` is singular.
 pub(crate) fn factor(model: &Model, rw: &mut RedWork) -> bool {
+    // the factored matrix's maps are kept for the chord solves (the next pass overwrites `p`,
+    // and `q` in its next Jacobian pass)
+    std::mem::swap(&mut rw.fq, &mut rw.q);
+    std::mem::swap(&mut rw.fp, &mut rw.p);
     for &b in model.order.iter().rev() {
-        let (m, mb) = (rw.q[b], rw.p[b]);
-        rw.fq[b] = m;
-        rw.fp[b] = mb;
+        let (m, mb) = (&rw.fq[b], &rw.fp[b]);
         let k = rw.kd[b];
         let f = m.f();
         // K S (columns) and D = S̄ᵀ K S
         let mut ks = [[0.0; 6]; 6];
         let mut d = [[0.0; 6]; 6];
-        let xc = rw.xc[b];
+        let xc = &rw.xc[b];
         for c in 0..f {
             let sc = m.s_col(c);
             ks[c] = mul_vec(&k, &sc);
@@ -103,7 +105,7 @@ pub(crate) fn factor(model: &Model, rw: &mut RedWork) -> bool {
         rw.dinv[b] = d;
         let Some(p) = model.parent[b] else { continue };
         let coupled = rw.coupled[b];
-        let mut ka = right_a(&k, &m);
+        let mut ka = right_a(&k, m);
         if coupled {
             for i in 0..6 {
                 for j in 0..6 {
@@ -122,7 +124,7 @@ pub(crate) fn factor(model: &Model, rw: &mut RedWork) -> bool {
             }
         }
         // + X_c A + X_p (geometric stiffness of the joint equations)
-        let xca = right_a(&xc, &m);
+        let xca = right_a(xc, m);
         for r in 0..f {
             for c in 0..6 {
                 g[r][c] += xca[r][c] + rw.xp[b][r][c];
@@ -139,7 +141,7 @@ pub(crate) fn factor(model: &Model, rw: &mut RedWork) -> bool {
         }
         rw.y[b] = y;
         // H = Āᵀ K + K_pc
-        let mut hm = left_at(&mb, &k);
+        let mut hm = left_at(mb, &k);
         if coupled {
             for i in 0..6 {
                 for j in 0..6 {
@@ -149,7 +151,7 @@ pub(crate) fn factor(model: &Model, rw: &mut RedWork) -> bool {
         }
         rw.hm[b] = hm;
         // K_p += H A − (H S) Y + Āᵀ K_cp
-        let mut upd = right_a(&hm, &m);
+        let mut upd = right_a(&hm, m);
         for c in 0..f {
             let hs = mul_vec(&hm, &m.s_col(c));
             for i in 0..6 {
@@ -159,7 +161,7 @@ pub(crate) fn factor(model: &Model, rw: &mut RedWork) -> bool {
             }
         }
         if coupled {
-            let t = left_at(&mb, &rw.kcp[b]);
+            let t = left_at(mb, &rw.kcp[b]);
             for i in 0..6 {
                 for j in 0..6 {
                     upd[i][j] += t[i][j];
@@ -206,7 +208,7 @@ pub(crate) fn solve(model: &Model, rw: &mut RedWork) {
         }
     }
     for &b in &model.order {
-        let m = rw.fq[b];
+        let m = &rw.fq[b];
         let f = m.f();
         let mut du = [0.0; 6];
         for k in 0..f {
