@@ -14,9 +14,9 @@
 
 mod common;
 use common::*;
-use triad::mechanics::{step, Model, StepStats};
+use triad::mechanics::{step, Model, State, StepStats};
 
-fn run(m: &Model, s: &mut triad::mechanics::State, n: usize, h: f64) -> (usize, usize) {
+fn run(m: &Model, s: &mut State, n: usize, h: f64) -> (usize, usize) {
     let (mut it, mut fb) = (0, 0);
     for _ in 0..n {
         let StepStats {
@@ -30,28 +30,38 @@ fn run(m: &Model, s: &mut triad::mechanics::State, n: usize, h: f64) -> (usize, 
     (it, fb)
 }
 
+/// Largest componentwise difference.
+fn max_diff(a: &[f64], b: &[f64]) -> f64 {
+    a.iter()
+        .zip(b)
+        .map(|(x, y)| (x - y).abs())
+        .fold(0.0, f64::max)
+}
+
+/// Steps a copy of `start` with its history and one without it `n` times: (with, without,
+/// iterations with, iterations without); neither may hand a stage back.
+fn with_and_without_history(
+    m: &Model,
+    start: &State,
+    n: usize,
+    h: f64,
+) -> (State, State, usize, usize) {
+    let (mut a, mut b) = (start.clone(), start.clone());
+    b.forget_history();
+    let (it_a, fb_a) = run(m, &mut a, n, h);
+    let (it_b, fb_b) = run(m, &mut b, n, h);
+    assert_eq!((fb_a, fb_b), (0, 0));
+    (a, b, it_a, it_b)
+}
+
 #[test]
 fn forgetting_the_history_changes_iterations_not_states() {
     let h = 1e-3;
-    let (m, mut a) = build(&chain(30), settings(h, 2));
-    run(&m, &mut a, 400, h);
-    let mut b = a.clone();
-    b.forget_history();
-    let (it_a, fb_a) = run(&m, &mut a, 200, h);
-    let (it_b, fb_b) = run(&m, &mut b, 200, h);
-    assert_eq!((fb_a, fb_b), (0, 0));
-    let dq = a
-        .coordinates()
-        .iter()
-        .zip(b.coordinates())
-        .map(|(x, y)| (x - y).abs())
-        .fold(0.0, f64::max);
-    let dv = a
-        .velocities()
-        .iter()
-        .zip(b.velocities())
-        .map(|(x, y)| (x - y).abs())
-        .fold(0.0, f64::max);
+    let (m, mut s) = build(&chain(30), settings(h, 2));
+    run(&m, &mut s, 400, h);
+    let (a, b, it_a, it_b) = with_and_without_history(&m, &s, 200, h);
+    let dq = max_diff(a.coordinates(), b.coordinates());
+    let dv = max_diff(a.velocities(), b.velocities());
     assert!(dq <= 1e-12 && dv <= 1e-11, "Δq {dq:.2e}, Δv {dv:.2e}");
     // the extrapolated start saves iterations against the restart's linear one at first
     let mut c = a.clone();
@@ -95,7 +105,7 @@ fn a_restored_state_repeats_the_run_bit_for_bit() {
     let (m, mut a) = build(&chain(100), settings(h, 2));
     let (_, fb) = run(&m, &mut a, 30, h);
     assert!(fb > 0, "no stage was handed back: the test needs one");
-    let mut b = triad::mechanics::State::new(&m);
+    let mut b = State::new(&m);
     b.restore(&m, &a.snapshot()).unwrap();
     for _ in 0..30 {
         let sa = step(&m, &mut a, h).unwrap();
@@ -113,24 +123,15 @@ fn a_restored_state_repeats_the_run_bit_for_bit() {
 #[test]
 fn order_four_stages_extrapolate_from_their_own_table() {
     let h = 1e-3;
-    let (m, mut a) = build(&chain(60), settings(h, 4));
-    run(&m, &mut a, 100, h);
-    let mut b = a.clone();
-    b.forget_history();
-    let (it_a, fb_a) = run(&m, &mut a, 300, h);
-    let (it_b, fb_b) = run(&m, &mut b, 300, h);
-    assert_eq!((fb_a, fb_b), (0, 0));
+    let (m, mut s) = build(&chain(60), settings(h, 4));
+    run(&m, &mut s, 100, h);
+    let (a, b, it_a, it_b) = with_and_without_history(&m, &s, 300, h);
     let per_step = it_a as f64 / 300.0;
     assert!(per_step <= 6.05, "{per_step} iterations per step");
     assert!(
         it_a <= it_b,
         "{it_a} with history, {it_b} after forgetting it"
     );
-    let dq = a
-        .coordinates()
-        .iter()
-        .zip(b.coordinates())
-        .map(|(x, y)| (x - y).abs())
-        .fold(0.0, f64::max);
+    let dq = max_diff(a.coordinates(), b.coordinates());
     assert!(dq <= 1e-12, "Δq {dq:.2e}");
 }

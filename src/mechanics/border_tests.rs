@@ -96,10 +96,9 @@ pub(crate) fn four_bar() -> ModelDef {
     }
 }
 
-/// An `n`-link chain (0.25 m, 0.25 kg rods along −z, axes alternating x, y) closed by a loop
-/// revolute from the end of the last link to the world or to body `to`, with a spring and a
-/// damper on the loop joint.
-pub(crate) fn chain_loop(n: usize, to: Option<usize>, axial: f64) -> ModelDef {
+/// An open `n`-link chain hanging from the world under gravity (0.25 m, 0.25 kg rods along −z,
+/// axes alternating x, y, axial inertia `axial`), bent and turning.
+pub(crate) fn hanging_chain(n: usize, axial: f64) -> ModelDef {
     let mut bodies = Vec::new();
     let mut joints = Vec::new();
     for k in 0..n {
@@ -122,13 +121,19 @@ pub(crate) fn chain_loop(n: usize, to: Option<usize>, axial: f64) -> ModelDef {
             0.3 * (0.7 * k as f64 + 0.4).sin(),
         ));
     }
-    let mut def = ModelDef {
+    ModelDef {
         gravity: Vec3::new(0.0, 0.0, -9.81),
         bodies,
         joints,
         loads: vec![],
         free_bodies: vec![],
-    };
+    }
+}
+
+/// [`hanging_chain`] closed by a loop revolute from the end of the last link to the world or to
+/// body `to`, with a spring and a damper on the loop joint.
+pub(crate) fn chain_loop(n: usize, to: Option<usize>, axial: f64) -> ModelDef {
+    let mut def = hanging_chain(n, axial);
     let (q0, _) = initial_configuration(&def).expect("chain");
     let pose = |b: usize| {
         BodyInertia::new(&def.bodies[b])

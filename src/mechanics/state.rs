@@ -5,7 +5,7 @@ use super::model::Model;
 use super::newton::Work;
 use super::outputs::Outputs;
 use super::projection::{project_velocities, ProjWork};
-use super::work::{tables, Memory, HISTORY, TABLES};
+use super::work::{history_len, Memory, HISTORY, TABLES};
 
 /// State of one simulation run. `Clone` is a complete snapshot.
 #[derive(Clone, Debug)]
@@ -53,7 +53,7 @@ impl State {
             lam: vec![0.0; model.nrows],
             angles: model.angles0.clone(),
             work: 0.0,
-            hist: vec![0.0; 6 * HISTORY * model.body_count() * tables(model.settings().order)],
+            hist: vec![0.0; history_len(model)],
             hprev: [[0.0; HISTORY]; TABLES],
             memory: Memory::default(),
             inputs: vec![0.0; model.inputs().len()],

@@ -154,10 +154,9 @@ fn robust_stage(
     stats: &mut StepStats,
 ) -> Result<(), StepError> {
     // the reduced iteration first where it applies; a stage it does not converge is redone
-    // in the multiplier form (same equations, same solution), then halved
-    // in the multiplier form straight away for a while after a stage was handed back (large
-    // steps on long chains: the next stages would likely fail alike, at the cost of a failed
-    // reduced attempt each)
+    // in the multiplier form (same equations, same solution), then halved. For a while after a
+    // stage was handed back, stages go to the multiplier form straight away (large steps on
+    // long chains: the next ones would likely fail alike, at the cost of a failed attempt each)
     let reduced = model.uses_reduced_solver() && ws.memory.multipliers == 0;
     ws.memory.multipliers = ws.memory.multipliers.saturating_sub(1);
     let mut first = stage(model, ws, held, h, table, reduced);

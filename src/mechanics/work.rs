@@ -12,14 +12,16 @@ pub const HISTORY: usize = 6;
 /// second and third stage of the order-4 composition (allocated for order-4 models only).
 pub const TABLES: usize = 4;
 
-/// Difference tables a model of this order uses.
+/// Length of the predictor history of `model` (`Work::hist`, `State::hist`): 6 numbers per
+/// body, difference and table; order-4 models keep [`TABLES`] tables, the others one.
 #[must_use]
-pub fn tables(order: u8) -> usize {
-    if order == 4 {
+pub fn history_len(model: &Model) -> usize {
+    let tables = if model.settings().order == 4 {
         TABLES
     } else {
         1
-    }
+    };
+    6 * HISTORY * model.bodies.len() * tables
 }
 
 /// What the solver remembers of the last stages: counts of stages left in which it deviates
@@ -143,7 +145,7 @@ impl Work {
             lam: vec![0.0; nr],
             ang: model.angles0.clone(),
             work: 0.0,
-            hist: vec![0.0; 6 * HISTORY * nb * tables(model.settings().order)],
+            hist: vec![0.0; history_len(model)],
             hprev: [[0.0; HISTORY]; TABLES],
             memory: Memory::default(),
             q: model.q0.clone(),
