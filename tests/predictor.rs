@@ -90,6 +90,20 @@ fn a_smooth_chain_converges_in_two_iterations_per_step() {
 }
 
 #[test]
+fn a_deep_chain_starts_from_its_placed_parents() {
+    // chain200 over its first 2 s: the reduced iteration reads each joint's increments off the
+    // placed parent and the predicted child (2.06 iterations per step); read off two predicted
+    // bodies, the dropped off-axis parts added up down the chain (2.34)
+    let h = 1e-3;
+    let (m, mut s) = build(&chain(200), settings(h, 2));
+    assert!(m.uses_reduced_solver());
+    let (it, fb) = run(&m, &mut s, 2000, h);
+    assert_eq!(fb, 0);
+    let per_step = it as f64 / 2000.0;
+    assert!(per_step <= 2.1, "{per_step} iterations per step");
+}
+
+#[test]
 fn deep_trees_use_the_multiplier_form() {
     let s = settings(1e-3, 2);
     assert!(Model::new(&chain(200), s).unwrap().uses_reduced_solver());

@@ -162,7 +162,7 @@ impl State {
 
     /// Every number that determines the future of this state (time, q, v, multipliers used as
     /// the Newton start, inputs, tunable parameters, accumulated work, unwrapping memory), flat:
-    /// `[t, q.., v.., v_lo.., λ/2.., angles.., work, hist.., h_prev.., memory (2), inputs.., damping.., stiffness..]`.
+    /// `[t, q.., v.., v_lo.., λ/2.., angles.., work, hist.., h_prev.., memory (3), inputs.., damping.., stiffness..]`.
     #[must_use]
     pub fn snapshot(&self) -> Vec<f64> {
         let mut out = Vec::with_capacity(self.snapshot_len());
@@ -183,7 +183,8 @@ impl State {
     }
 
     fn snapshot_len(&self) -> usize {
-        4 + HISTORY * TABLES
+        2 + Memory::LEN
+            + HISTORY * TABLES
             + self.q.len()
             + self.hist.len()
             + 2 * self.v.len()
@@ -223,7 +224,7 @@ impl State {
         take(&mut self.hist);
         let mut hp = [[0.0; HISTORY]; TABLES];
         take(hp.as_flattened_mut());
-        let mut memory = [0.0; 2];
+        let mut memory = [0.0; Memory::LEN];
         take(&mut memory);
         take(&mut self.inputs);
         take(&mut self.damping);

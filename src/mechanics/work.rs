@@ -35,18 +35,32 @@ pub struct Memory {
     /// Stages solved in the multiplier form straight away (set when the reduced iteration
     /// handed a stage back: the next ones would likely fail alike).
     pub multipliers: u32,
+    /// Reduced stages left before the next one settles its start onto the joint rows
+    /// (`reduced::settle`, every [`SETTLE_EVERY`] stages).
+    pub settle: u32,
 }
 
+/// A reduced stage settles its start onto the joint rows once in this many (the rows' round-off
+/// grows as a random walk in between, by about √8 ε; settling every stage cost 5 % of a step).
+pub const SETTLE_EVERY: u32 = 8;
+
 impl Memory {
-    /// As two numbers of a snapshot.
+    /// Numbers in a snapshot.
+    pub const LEN: usize = 3;
+
+    /// As numbers of a snapshot.
     #[must_use]
-    pub fn to_f64(self) -> [f64; 2] {
-        [f64::from(self.eager), f64::from(self.multipliers)]
+    pub fn to_f64(self) -> [f64; Self::LEN] {
+        [
+            f64::from(self.eager),
+            f64::from(self.multipliers),
+            f64::from(self.settle),
+        ]
     }
 
-    /// From two numbers of a snapshot (anything but a small non-negative count reads as 0).
+    /// From numbers of a snapshot (anything but a small non-negative count reads as 0).
     #[must_use]
-    pub fn from_f64(x: [f64; 2]) -> Self {
+    pub fn from_f64(x: [f64; Self::LEN]) -> Self {
         let count = |v: f64| {
             if (0.0..=1e6).contains(&v) {
                 v as u32
@@ -57,6 +71,7 @@ impl Memory {
         Self {
             eager: count(x[0]),
             multipliers: count(x[1]),
+            settle: count(x[2]),
         }
     }
 }

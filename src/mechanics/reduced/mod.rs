@@ -4,7 +4,8 @@
 //! The unknowns of a stage are the joint increments `u` (one per degree of freedom: an angle
 //! per revolute, a slide per prismatic, the absolute rotation of a spherical joint's child and
 //! of a free root body). The iterate `q = Φ(u, qₙ)` satisfies every joint constraint that held
-//! at `qₙ` identically (`place`), so no multiplier is needed; premultiplying the scaled
+//! at `qₙ` identically (`place`; every few stages `settle` first puts `qₙ` back on the rows,
+//! so that round-off does not pile up in them), so no multiplier is needed; premultiplying the scaled
 //! momentum equations by the discrete null-space matrix `P̄ = P(q̄)ᵀ` (`maps`) removes the
 //! constraint forces exactly. The reduced equations `P̄ᵀ r(Φ(u)) = 0` have the same solution
 //! as the multiplier form (`newton`), so energy, momentum and the torque balance are conserved
@@ -22,6 +23,7 @@ mod eval;
 mod iterate;
 mod maps;
 pub(crate) mod place;
+mod settle;
 mod tree;
 
 use eval::evaluate;

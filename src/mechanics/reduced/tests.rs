@@ -184,3 +184,77 @@ fn reduced_jacobian_with_a_slide_is_close() {
 fn reduced_jacobian_of_a_long_hanging_chain_matches_finite_differences() {
     assert_reduced_jacobian(&hanging_chain(40, 3.125e-6), &[0.0; 40], &[0.0; 40], 1e-5);
 }
+
+/// `sample()` with its prismatic joint (index 1) replaced by a `kind` joint at generic
+/// coordinates.
+fn with_pair(kind: crate::mechanics::JointType) -> ModelDef {
+    let mut def = sample();
+    def.joints[1].kind = kind;
+    def.joints[1].initial = crate::mechanics::JointInitial::Coords {
+        q: (0..kind.nq()).map(|k| 0.3 - 0.25 * k as f64).collect(),
+        qd: (0..kind.dof()).map(|k| 0.5 - 0.3 * k as f64).collect(),
+    };
+    def
+}
+
+/// Largest joint row and internal row (`dᵢ·dⱼ − δᵢⱼ`) at `q`.
+fn worst_rows(model: &Model, q: &[f64]) -> f64 {
+    let mut worst = 0.0_f64;
+    for jt in &model.joints {
+        let g = &jt.geom;
+        let r = g.residual(&body_nodes(q, g.parent), &body_nodes(q, Some(g.child)));
+        worst = worst.max(r);
+    }
+    for b in 0..model.bodies.len() {
+        let d = body_nodes(q, Some(b));
+        for i in 1..4 {
+            for j in 1..4 {
+                let want = if i == j { 1.0 } else { 0.0 };
+                worst = worst.max((d[i].dot(&d[j]) - want).abs());
+            }
+        }
+    }
+    worst
+}
+
+/// `settle` puts a start whose rows were knocked off by 1e-9 back onto every row (joint and
+/// internal) to round-off, moving it by about the violation, and leaves a valid start where
+/// it is: every pair, a free root and the world as parents.
+#[test]
+fn settle_puts_the_stage_start_back_on_the_rows() {
+    use crate::mechanics::JointType as T;
+    for kind in [
+        T::Prismatic,
+        T::Cylindrical,
+        T::Universal,
+        T::Planar,
+        T::Fixed,
+        T::Revolute,
+        T::Spherical,
+    ] {
+        let model = Model::new(&with_pair(kind), SolverSettings::default()).expect("model");
+        let mut ws = Work::new(&model);
+        ws.qn.copy_from_slice(&model.q0);
+        settle::settle(&model, &mut ws);
+        let moved = |ws: &Work| {
+            ws.qn
+                .iter()
+                .zip(&model.q0)
+                .map(|(a, b)| (a - b).abs())
+                .fold(0.0, f64::max)
+        };
+        assert!(
+            moved(&ws) < 1e-14,
+            "{kind:?}: a valid start moved by {:e}",
+            moved(&ws)
+        );
+        for k in 0..ws.qn.len() {
+            ws.qn[k] = model.q0[k] + 1e-9 * (0.7 * k as f64).sin();
+        }
+        assert!(worst_rows(&model, &ws.qn) > 1e-10);
+        settle::settle(&model, &mut ws);
+        let rows = worst_rows(&model, &ws.qn);
+        assert!(rows < 1e-14, "{kind:?}: rows {rows:e} after settling");
+        assert!(moved(&ws) < 1e-8, "{kind:?}: moved by {:e}", moved(&ws));
+    }
+}
