@@ -14,7 +14,7 @@
 
 mod common;
 use common::*;
-use triad::mechanics::{step, Model, State, StepStats};
+use triad::mechanics::{step, Model, SolverSettings, State, StepStats};
 
 fn run(m: &Model, s: &mut State, n: usize, h: f64) -> (usize, usize) {
     let (mut it, mut fb) = (0, 0);
@@ -87,6 +87,24 @@ fn a_smooth_chain_converges_in_two_iterations_per_step() {
     assert_eq!(fb, 0);
     let per_step = it as f64 / 1000.0;
     assert!(per_step <= 2.05, "{per_step} iterations per step");
+}
+
+#[test]
+fn a_smooth_double_pendulum_converges_in_one_newton_iteration() {
+    // h = 1e-3, first 2 s: the extrapolated start is mostly within 2e-11, so the first Newton
+    // update (exact Jacobian) leaves an error of ~1e-21 and is accepted without a second
+    // residual (1.15 iterations per step, 2.0 otherwise); the energy balance stays at round-off
+    // (the default settings: tolerance 1e-10, h = 1e-3)
+    let h = 1e-3;
+    let (m, mut s) = build(&double_pendulum(), SolverSettings::default());
+    let e0 = s.outputs().energy;
+    let (it, fb) = run(&m, &mut s, 2000, h);
+    assert_eq!(fb, 0);
+    let per_step = it as f64 / 2000.0;
+    assert!(per_step <= 1.2, "{per_step} iterations per step");
+    let o = s.outputs();
+    let bal = (o.energy - e0 - o.work).abs() / e0.abs();
+    assert!(bal < 1e-12, "energy balance {bal:e}");
 }
 
 #[test]

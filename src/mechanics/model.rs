@@ -5,7 +5,7 @@
 //! loads, the tree order used by the block elimination, the initial `q0`, `v0`).
 
 use super::constraint::{DotRow, LinVec};
-use super::def::{ModelDef, SolverSettings};
+use super::def::{JointType, ModelDef, SolverSettings};
 use super::error::ModelError;
 use super::joint::JointGeom;
 use super::sparse_row::SparseRow;
@@ -127,6 +127,9 @@ pub struct Model {
     /// Solve trees by the reduced (joint-increment) iteration, `reduced`; true as built for
     /// models it covers (see [`Model::set_reduced_solver`]).
     pub(crate) reduced: bool,
+    /// Whether the reduced Newton matrix is the exact Jacobian: no slide pair (prismatic,
+    /// cylindrical, planar), whose geometric stiffness is approximate.
+    pub(crate) exact_reduced: bool,
     /// Characteristic length for scaled norms, m.
     pub(crate) lc: f64,
     /// Initial coordinates (12 per body), world frame.
@@ -271,6 +274,7 @@ impl Model {
             nturn: 0,
             dense: false,
             reduced: false,
+            exact_reduced: false,
             lc,
             q0: vec![0.0; 12 * def.bodies.len()],
             v0: vec![0.0; 12 * def.bodies.len()],
@@ -281,6 +285,12 @@ impl Model {
         };
         super::assemble::build(&mut model, &joint_input)?;
         model.reduced = super::reduced::suits(&model);
+        model.exact_reduced = model.joints.iter().all(|j| {
+            !matches!(
+                j.geom.kind,
+                JointType::Prismatic | JointType::Cylindrical | JointType::Planar
+            )
+        });
         Ok(model)
     }
 
