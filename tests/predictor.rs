@@ -76,16 +76,21 @@ fn forgetting_the_history_changes_iterations_not_states() {
     );
 }
 
+/// Iterations per step of `n` steps of the reduced form from `s`; no stage may be handed back.
+fn reduced_iterations(m: &Model, s: &mut State, n: usize, h: f64) -> f64 {
+    assert!(m.uses_reduced_solver());
+    let (it, fb) = run(m, s, n, h);
+    assert_eq!(fb, 0, "stages handed to the multiplier form");
+    it as f64 / n as f64
+}
+
 #[test]
 fn a_smooth_chain_converges_in_two_iterations_per_step() {
     // chain100 at h = 1e-3 over its first second: 4.0 iterations per step with the linear
     // start (mean rate from the nodal one and the last stage's), 2.0 with the extrapolation
     let h = 1e-3;
     let (m, mut s) = build(&chain(100), settings(h, 2));
-    assert!(m.uses_reduced_solver());
-    let (it, fb) = run(&m, &mut s, 1000, h);
-    assert_eq!(fb, 0);
-    let per_step = it as f64 / 1000.0;
+    let per_step = reduced_iterations(&m, &mut s, 1000, h);
     assert!(per_step <= 2.05, "{per_step} iterations per step");
 }
 
@@ -98,9 +103,7 @@ fn a_smooth_double_pendulum_converges_in_one_newton_iteration() {
     let h = 1e-3;
     let (m, mut s) = build(&double_pendulum(), SolverSettings::default());
     let e0 = s.outputs().energy;
-    let (it, fb) = run(&m, &mut s, 2000, h);
-    assert_eq!(fb, 0);
-    let per_step = it as f64 / 2000.0;
+    let per_step = reduced_iterations(&m, &mut s, 2000, h);
     assert!(per_step <= 1.2, "{per_step} iterations per step");
     let o = s.outputs();
     let bal = (o.energy - e0 - o.work).abs() / e0.abs();
@@ -114,10 +117,7 @@ fn a_deep_chain_starts_from_its_placed_parents() {
     // bodies, the dropped off-axis parts added up down the chain (2.34)
     let h = 1e-3;
     let (m, mut s) = build(&chain(200), settings(h, 2));
-    assert!(m.uses_reduced_solver());
-    let (it, fb) = run(&m, &mut s, 2000, h);
-    assert_eq!(fb, 0);
-    let per_step = it as f64 / 2000.0;
+    let per_step = reduced_iterations(&m, &mut s, 2000, h);
     assert!(per_step <= 2.1, "{per_step} iterations per step");
 }
 
