@@ -1,6 +1,6 @@
 //! Callgrind driver of the core step: `cargo build --profile profiling --example step_profile`,
 //! then `valgrind --tool=callgrind target/profiling/examples/step_profile dp 2000` (or
-//! `chain100 200`, `chainN` for any N, `top`, `fourbar 2000`, `chain100_loop 50`,
+//! `chain100 200`, `chainN` for any N, `top`, `free` (a free body near its unstable axis), `fourbar 2000`, `chain100_loop 50`,
 //! `chain400_loop`, `chain1000_loop`; an optional third argument is the step size, default
 //! 1e-3). Also prints the wall-clock time per step of the run (release build:
 //! `cargo run --release --example step_profile chain1000 2000`, the whole 2 s run of the peers'
@@ -27,6 +27,15 @@ fn main() {
             common::chain(c[5..].parse().unwrap())
         }
         "top" => common::heavy_top(),
+        "free" => common::free_body(
+            1.0,
+            common::box_inertia(1.0, 0.1, 0.4, 0.9),
+            common::rot([0.1, -0.2, 0.3]),
+            triad::math::Vec3::new(0.3, 5.0, 0.2),
+            triad::math::Vec3::new(0.1, 0.0, 0.0),
+            false,
+            false,
+        ),
         "fourbar" => common::four_bar(1.0, 3.0),
         "chain100_loop" => common::chain_loop(100, None, 0.0, 0.0),
         "chain400_loop" => common::chain_loop(400, None, 0.0, 0.0),
