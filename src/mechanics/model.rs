@@ -5,7 +5,7 @@
 //! loads, the tree order used by the block elimination, the initial `q0`, `v0`).
 
 use super::constraint::{DotRow, LinVec};
-use super::def::{JointType, ModelDef, SolverSettings};
+use super::def::{ModelDef, SolverSettings};
 use super::error::ModelError;
 use super::joint::JointGeom;
 use super::sparse_row::SparseRow;
@@ -285,12 +285,7 @@ impl Model {
         };
         super::assemble::build(&mut model, &joint_input)?;
         model.reduced = super::reduced::suits(&model);
-        model.exact_reduced = model.joints.iter().all(|j| {
-            !matches!(
-                j.geom.kind,
-                JointType::Prismatic | JointType::Cylindrical | JointType::Planar
-            )
-        });
+        model.exact_reduced = super::reduced::exact_jacobian(&model);
         Ok(model)
     }
 

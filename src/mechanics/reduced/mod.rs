@@ -31,6 +31,7 @@ pub(crate) use iterate::newton;
 use place::{prepare, update};
 use tree::{factor, solve};
 
+use super::def::JointType;
 use super::model::Model;
 use crate::math::{Mat3, Vec3};
 use maps::{Map, V6};
@@ -146,6 +147,17 @@ pub(crate) fn suits(model: &Model) -> bool {
         depth[b] = model.parent[b].map_or(1, |p| depth[p] + 1);
     }
     depth.iter().all(|&d| d <= MAX_DEPTH)
+}
+
+/// Whether the reduced Newton matrix of `model` is the exact Jacobian: no slide pair
+/// (prismatic, cylindrical, planar), whose geometric stiffness is approximate (`eval`).
+pub(crate) fn exact_jacobian(model: &Model) -> bool {
+    model.joints.iter().all(|j| {
+        !matches!(
+            j.geom.kind,
+            JointType::Prismatic | JointType::Cylindrical | JointType::Planar
+        )
+    })
 }
 
 impl RedWork {

@@ -26,16 +26,12 @@
 //!                    (r·a₁)a₁ + (r·a₂)a₂ (planar)
 //! ```
 
+use super::super::body::rotation;
 use super::super::def::JointType as T;
-use super::super::kernels::body_nodes;
+use super::super::joint::body_nodes;
 use super::super::model::Model;
 use super::super::work::Work;
 use crate::math::{Mat3, Vec3};
-
-/// Directors as the columns of a matrix.
-fn columns(d: &[Vec3]) -> Mat3 {
-    Mat3::from_columns(&[d[0], d[1], d[2]])
-}
 
 /// One Newton–Schulz step towards the nearest rotation: `X (3I − XᵀX)/2` (squares an
 /// orthonormality error).
@@ -61,24 +57,17 @@ fn axis_rotation(k: usize, s: f64, c: f64) -> Mat3 {
 pub(crate) fn settle(model: &Model, ws: &mut Work) {
     for &b in &model.order {
         let o = 12 * b;
-        let qb = body_nodes(&ws.qn, b);
-        let d = columns(&qb[1..]);
+        let qb = body_nodes(&ws.qn, Some(b));
+        let d = rotation(&ws.qn[o..]);
         let (phi, dh) = match model.tree_joint[b] {
             None => (qb[0], orthonormal(&d)),
             Some(j) => {
                 let g = &model.joints[j].geom;
-                let qa = match model.parent[b] {
-                    Some(p) => body_nodes(&ws.qn, p),
-                    None => super::super::joint::world_nodes(),
-                };
-                let a = Mat3::from_columns(&[
-                    g.a[0].eval(&qa, &qb),
-                    g.a[1].eval(&qa, &qb),
-                    g.a[2].eval(&qa, &qb),
-                ]);
+                let qa = body_nodes(&ws.qn, model.parent[b]);
+                let (a, bm) = g.axes(&qa, &qb);
                 // b_k = Σᵢ C_ik dᵢ
                 let c = Mat3::from_fn(|i, k| g.b[k].b[i + 1]);
-                let rel = a.transpose() * d * c;
+                let rel = a.transpose() * bm;
                 let turn = match g.kind {
                     T::Revolute | T::Cylindrical | T::Planar => Some(axis_rotation(
                         2,
