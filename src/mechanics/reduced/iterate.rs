@@ -20,7 +20,7 @@
 use super::super::model::Model;
 use super::super::work::{Held, Work};
 use super::eval::balanced;
-use super::{evaluate, factor, prepare, solve, update, RedWork};
+use super::{evaluate, factor, prepare, size, solve, update, update_bodies, RedWork};
 use crate::mechanics::StepError;
 
 /// Contraction above which the factors are refreshed.
@@ -82,6 +82,36 @@ pub(crate) fn newton(
     }
 }
 
+/// The estimated error if the iterate updated by `upd` (at iteration `it`, from the residual
+/// `res`, contracting at `theta`, at best at `best` so far) is accepted.
+fn accepted(
+    model: &Model,
+    it: usize,
+    res: f64,
+    upd: f64,
+    theta: f64,
+    best: f64,
+    chord_accept: f64,
+) -> Option<f64> {
+    let tol = model.settings().tolerance;
+    // the first Newton update with the exact Jacobian leaves an error of about C·|δ|²
+    if it == 1 && model.exact_reduced && res <= tol && upd <= ONE_NEWTON * chord_accept.sqrt() {
+        return Some(upd * upd);
+    }
+    if upd <= chord_accept {
+        return Some(upd);
+    }
+    if it > 1 && theta < 1.0 {
+        let err = theta / (1.0 - theta) * upd;
+        if theta <= GIVE_UP && err <= chord_accept {
+            return Some(err);
+        }
+    }
+    // the round-off floor: after contracting well the updates stop shrinking at a size set by
+    // the number of bodies (as in the multiplier form's chord iterations)
+    (it > 1 && theta >= 0.5 && best <= REFACTOR && upd <= 1e-2 * tol).then_some(upd)
+}
+
 fn run(
     model: &Model,
     ws: &mut Work,
@@ -117,48 +147,24 @@ fn run(
         }
         since_factor += 1;
         solve(model, rw);
-        let upd = update(model, rw, ws);
+        let upd = size(model, rw);
         if !upd.is_finite() {
             return Err(StepError::NonFinite("state"));
         }
-        // the first Newton update with the exact Jacobian leaves an error of about C·|δ|²
-        if it == 1 && model.exact_reduced && res <= tol && upd <= ONE_NEWTON * chord_accept.sqrt() {
-            return Ok(Converged {
-                iterations: it,
-                factorizations,
-                error: upd * upd,
-            });
-        }
-        if upd <= chord_accept {
-            return Ok(Converged {
-                iterations: it,
-                factorizations,
-                error: upd,
-            });
-        }
         let theta = upd / prev;
-        if it > 1 && theta < 1.0 {
-            let err = theta / (1.0 - theta) * upd;
-            if theta <= GIVE_UP && err <= chord_accept {
-                return Ok(Converged {
-                    iterations: it,
-                    factorizations,
-                    error: err,
-                });
-            }
-        }
-        // the round-off floor: after contracting well the updates stop shrinking at a size set
-        // by the number of bodies (as in the multiplier form's chord iterations)
         if it > 1 {
             best = best.min(theta);
         }
-        if it > 1 && theta >= 0.5 && best <= REFACTOR && upd <= 1e-2 * tol {
+        if let Some(error) = accepted(model, it, res, upd, theta, best, chord_accept) {
+            // the last update goes to the bodies, whose round-off is their own (`update_bodies`)
+            update_bodies(model, rw, ws);
             return Ok(Converged {
                 iterations: it,
                 factorizations,
-                error: upd,
+                error,
             });
         }
+        update(model, rw, ws);
         if it >= maxit || (theta > GIVE_UP && since_factor == 2) {
             return Err(StepError::NoConvergence {
                 iterations: it,

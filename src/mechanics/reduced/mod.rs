@@ -9,7 +9,9 @@
 //! momentum equations by the discrete null-space matrix `P̄ = P(q̄)ᵀ` (`maps`) removes the
 //! constraint forces exactly. The reduced equations `P̄ᵀ r(Φ(u)) = 0` have the same solution
 //! as the multiplier form (`newton`), so energy, momentum and the torque balance are conserved
-//! alike; there are `f` unknowns instead of `6N + m`.
+//! alike; there are `f` unknowns instead of `6N + m`. The update a stage accepts is applied to
+//! the bodies' own increments rather than placed (`place::update_bodies`): its rows err only by
+//! its square, and its round-off stays each body's own instead of turning whole subtrees.
 //!
 //! Newton matrix `P̄ᵀ K Q + ∂P̄ᵀ/∂u · W` (`K` the body blocks of `newton`, `Q = ∂Φ/∂u`, `W`
 //! the subtree wrenches): the second term, the constraint forces' geometric stiffness, is exact
@@ -28,7 +30,7 @@ mod tree;
 
 use eval::evaluate;
 pub(crate) use iterate::newton;
-use place::{prepare, update};
+use place::{prepare, size, update, update_bodies};
 use tree::{factor, solve};
 
 use super::def::JointType;
