@@ -7,7 +7,7 @@
 //! protocol), the iterations, the stages handed to the multiplier form, and on stderr the
 //! energy balance `E − E₀ − work` at the end. Same settings as `benches/step.rs` (order 2,
 //! h = 1e-3, tolerance 1e-10). Environment: `TRIAD_MULTIPLIERS=1` solves trees in the
-//! multiplier form too, `TRIAD_REDUCED=1` every tree in the reduced form however deep; `TRIAD_TRACE=1` prints the energy balance after every step; `TRIAD_ORDER4=1` steps with the
+//! multiplier form too, `TRIAD_REDUCED=1` every tree in the reduced form (the default); `TRIAD_TRACE=1` prints the energy balance after every step; `TRIAD_ORDER4=1` steps with the
 //! order-4 composition.
 use triad::mechanics::{step_state, Model, SolverSettings, State};
 

@@ -5,8 +5,8 @@
 //! trajectories agree to the Newton tolerance, the reduced one converges without handing a
 //! stage to the multiplier form, and the energy balance `E − E₀ = work` holds to 1e-10. Every
 //! eighth stage starts from `qₙ` settled onto the rows (`g(qₙ) = 0` to round-off), so over a
-//! long run the rows stay at round-off as in the multiplier form. The accepted update goes to
-//! the bodies, so a deep chain balances energy to round-off as well.
+//! long run the rows stay at round-off as in the multiplier form. The updates go to the
+//! bodies, so a deep chain balances energy to round-off as well.
 mod common;
 use common::*;
 use triad::math::{exp_so3, Vec3};
@@ -142,10 +142,10 @@ fn rows_stay_at_round_off_over_a_long_run() {
     assert!(rows < 1e-14, "largest row {rows:e}");
 }
 
-/// The energy balance of a deep chain stays at round-off in the reduced form: the update a
-/// stage accepts goes to each body's own increments, not through the joint increments, whose
-/// last place near the root turns the whole subtree (chain300 in the reduced form, default
-/// settings, 1000 steps at h = 1e-3: 6e-16 relative; placed through the joints 2.1e-14).
+/// The energy balance of a deep chain stays at round-off in the reduced form: the updates go
+/// to each body's own increments, not through the joint increments, whose last place near the
+/// root turns the whole subtree (chain300, default settings, 1000 steps at h = 1e-3: 6e-16
+/// relative; placed through the joints 2.1e-14).
 #[test]
 fn a_deep_chain_balances_energy_to_round_off_in_the_reduced_form() {
     let h = 1e-3;
@@ -153,8 +153,8 @@ fn a_deep_chain_balances_energy_to_round_off_in_the_reduced_form() {
         max_step: h,
         ..SolverSettings::default()
     };
-    let (mut m, mut st) = build(&chain(300), s);
-    m.set_reduced_solver(true);
+    let (m, mut st) = build(&chain(300), s);
+    assert!(m.uses_reduced_solver());
     let e0 = st.outputs().energy;
     let mut fallbacks = 0;
     for _ in 0..1000 {

@@ -284,7 +284,7 @@ impl Model {
             naive_torque: false,
         };
         super::assemble::build(&mut model, &joint_input)?;
-        model.reduced = super::reduced::suits(&model);
+        model.reduced = super::reduced::covers(&model);
         model.exact_reduced = super::reduced::exact_jacobian(&model);
         Ok(model)
     }
@@ -347,9 +347,9 @@ impl Model {
         self.dense = dense;
     }
 
-    /// Whether steps solve the reduced equations in the joint increments (discrete null-space
+    /// Whether steps solve the reduced equations in the joint rates (discrete null-space
     /// method, theory.md §4.5) before the multiplier form: true as built for models without
-    /// loop-closing joints whose longest path from a root has at most 200 joints.
+    /// loop-closing joints (trees).
     #[must_use]
     pub fn uses_reduced_solver(&self) -> bool {
         self.reduced && !self.dense
@@ -357,7 +357,7 @@ impl Model {
 
     /// Test-only: `false` solves every stage in the multiplier form (body increments and joint
     /// multipliers), the oracle of the reduced iteration; `true` solves every tree in the
-    /// reduced form, however deep. Never use outside tests.
+    /// reduced form (the default). Never use outside tests.
     #[doc(hidden)]
     pub fn set_reduced_solver(&mut self, on: bool) {
         self.reduced = on && super::reduced::covers(self);

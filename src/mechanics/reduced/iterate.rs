@@ -20,7 +20,7 @@
 use super::super::model::Model;
 use super::super::work::{Held, Work};
 use super::eval::balanced;
-use super::{evaluate, factor, prepare, size, solve, update, update_bodies, RedWork};
+use super::{defects, evaluate, factor, prepare, size, solve, update, RedWork};
 use crate::mechanics::StepError;
 
 /// Contraction above which the factors are refreshed.
@@ -146,6 +146,7 @@ fn run(
             }
         }
         since_factor += 1;
+        defects(model, rw);
         solve(model, rw);
         let upd = size(model, rw);
         if !upd.is_finite() {
@@ -156,21 +157,20 @@ fn run(
             best = best.min(theta);
         }
         if let Some(error) = accepted(model, it, res, upd, theta, best, chord_accept) {
-            // the last update goes to the bodies, whose round-off is their own (`update_bodies`)
-            update_bodies(model, rw, ws);
+            update(model, rw, ws);
             return Ok(Converged {
                 iterations: it,
                 factorizations,
                 error,
             });
         }
-        update(model, rw, ws);
         if it >= maxit || (theta > GIVE_UP && since_factor == 2) {
             return Err(StepError::NoConvergence {
                 iterations: it,
                 residual: res.max(upd),
             });
         }
+        update(model, rw, ws);
         if theta > REFACTOR && since_factor >= 2 && it > 2 && upd > 1e-2 * tol {
             ws.memory.eager = EAGER_STAGES;
         }

@@ -1,25 +1,38 @@
 //! The discrete null-space method with nodal reparametrization for trees (theory.md §4.5):
 //! Newton on the joints' own increments instead of the body increments and joint multipliers.
 //!
-//! The unknowns of a stage are the joint increments `u` (one per degree of freedom: an angle
-//! per revolute, a slide per prismatic, the absolute rotation of a spherical joint's child and
-//! of a free root body). The iterate `q = Φ(u, qₙ)` satisfies every joint constraint that held
-//! at `qₙ` identically (`place`; every few stages `settle` first puts `qₙ` back on the rows,
-//! so that round-off does not pile up in them), so no multiplier is needed; premultiplying the scaled
-//! momentum equations by the discrete null-space matrix `P̄ = P(q̄)ᵀ` (`maps`) removes the
-//! constraint forces exactly. The reduced equations `P̄ᵀ r(Φ(u)) = 0` have the same solution
-//! as the multiplier form (`newton`), so energy, momentum and the torque balance are conserved
-//! alike; there are `f` unknowns instead of `6N + m`. The update a stage accepts is applied to
-//! the bodies' own increments rather than placed (`place::update_bodies`): its rows err only by
-//! its square, and its round-off stays each body's own instead of turning whole subtrees.
+//! The unknowns of a Newton update are the joint rates `δu` (one per degree of freedom: an
+//! angle per revolute, a slide per prismatic, the absolute rotation of a spherical joint's
+//! child and of a free root body); the body twists follow down the tree, `x_c = A x_p + S δu_c
+//! + c_c` (`maps`). Premultiplying the scaled momentum equations by the discrete null-space
+//! matrix `P̄ = P(q̄)ᵀ` removes the constraint forces exactly, so no multiplier is needed. The
+//! reduced equations `P̄ᵀ r(q) = 0` with the joint rows at their values at `qₙ` have the same
+//! solution as the multiplier form (`newton`), so energy, momentum and the torque balance are
+//! conserved alike; there are `f` unknowns instead of `6N + m`.
 //!
-//! Newton matrix `P̄ᵀ K Q + ∂P̄ᵀ/∂u · W` (`K` the body blocks of `newton`, `Q = ∂Φ/∂u`, `W`
+//! The iterate is the bodies' own (`place`): each update turns and shifts every body by its
+//! twist, so the bodies stay rigid and their joint rows err by the square of the update. The
+//! next solve corrects those defects to first order through `c` (`G c = −g`, `G S = 0`), as
+//! the multiplier form's does, and every few stages `settle` puts `qₙ` back on the rows, so
+//! that round-off does not pile up in them. This is the null-space method of the multiplier
+//! form's linear system; the nodal reparametrization `q = Φ(u, qₙ)` of theory.md §4.5 (the
+//! bodies placed from the joint increments at every iterate) gives the same solution, but it
+//! turns the far bodies of a chain along arcs, which made chain1000's equations ≈ 1000× more
+//! nonlinear than the multiplier form's (0.4 against 4e-4 as the first chord contraction from
+//! the same first update), and it carries the round-off of a joint increment near the root
+//! into the whole subtree.
+//!
+//! Newton matrix `P̄ᵀ K Q + ∂P̄ᵀ/∂u · W` (`K` the body blocks of `newton`, `Q` the maps at the iterate, `W`
 //! the subtree wrenches): the second term, the constraint forces' geometric stiffness, is exact
 //! for turning pairs and approximate for slides (`eval`). The matrix is eliminated leaves to
 //! root like an articulated-body recursion with fixed-size blocks (`tree`), O(N). A stage that
 //! does not converge is redone by the multiplier form (`iterate`). Loop-closing joints are not
-//! covered: such models use the multiplier form throughout, and so do trees deeper than
-//! [`MAX_DEPTH`].
+//! covered: such models use the multiplier form throughout.
+//!
+//! Measured on the chainN models at h = 1e-3 over 10 s (10 000 steps), iterations per step and
+//! energy balance (relative), against the multiplier form's: N = 200: 2.08 (2.54), 1e-15;
+//! N = 300: 2.21 (2.74), 1e-15; N = 500: 2.83 (3.12), 4e-15; N = 1000: 4.38 (3.83), 1.7e-14,
+//! 6 stages handed back, 5.7 against 9–10.5 ms per step.
 
 mod eval;
 mod iterate;
@@ -30,7 +43,7 @@ mod tree;
 
 use eval::evaluate;
 pub(crate) use iterate::newton;
-use place::{prepare, size, update, update_bodies};
+use place::{defects, prepare, size, update};
 use tree::{factor, solve};
 
 use super::def::JointType;
@@ -105,6 +118,8 @@ pub(crate) struct RedWork {
     pub yv: Vec<V6>,
     /// Body twist updates `δx` of the last solve.
     pub dx: Vec<V6>,
+    /// The joints' defects at the iterate as body twists (`place::defects`).
+    pub c: Vec<V6>,
 }
 
 /// Whether the reduced iteration covers `model`: a tree (no loop-closing joint) solved
@@ -115,40 +130,6 @@ pub(crate) fn covers(model: &Model) -> bool {
         .iter()
         .enumerate()
         .all(|(j, jt)| model.tree_joint[jt.child] == Some(j) && jt.dropped.is_empty())
-}
-
-/// Deepest tree (joints on the longest path from the world or a free root to a leaf) that the
-/// reduced iteration solves by default. Deeper trees use the multiplier form, for two reasons
-/// that grow with depth:
-/// - round-off: the joint increments are numbers of ≈ 16 digits, and an error of one unit in
-///   the last place of a joint near the root turns its whole subtree rigidly, which the
-///   reduced residual weighs with the subtree's inertia about that joint (`∝ N³` down a chain);
-///   the energy balance errs by about that residual times the joint's increment every step, a
-///   random walk (the multiplier form's unknowns are each body's own, whose round-off does not
-///   add up coherently);
-/// - nonlinearity: a rotation near the root moves the far bodies along arcs, so the iteration
-///   needs more iterations and fresh matrices in a fast motion.
-///
-/// Measured on the chainN models at h = 1e-3 over 10 s (10 000 steps): N = 200: 2.65
-/// iterations per step against 2.54, 410 against 799 µs, energy 2.7e-13 against 9e-15
-/// relative; N = 300: 3.5 iterations against 2.74, 814 against 1 327 µs, 8.7e-14 against
-/// 1.5e-14; N = 500: 4.2 against 3.1, 49 stages handed back, 2 327 against 3 101 µs, 3.0e-12
-/// against 3.3e-14; N = 1000: 4.5 against 3.8, 690 stages handed back, 1.3e-13 against
-/// 1.3e-14. The reduced form stays faster, but from N ≈ 500 its energy leaves the 1e-12
-/// relative that the tests hold small models to over 10 000 steps, and it hands stages back.
-pub(crate) const MAX_DEPTH: usize = 200;
-
-/// Whether the reduced iteration is the default for `model`: [`covers`] it and no path is
-/// deeper than [`MAX_DEPTH`].
-pub(crate) fn suits(model: &Model) -> bool {
-    if !covers(model) {
-        return false;
-    }
-    let mut depth = vec![0_usize; model.bodies.len()];
-    for &b in &model.order {
-        depth[b] = model.parent[b].map_or(1, |p| depth[p] + 1);
-    }
-    depth.iter().all(|&d| d <= MAX_DEPTH)
 }
 
 /// Whether the reduced Newton matrix of `model` is the exact Jacobian: no slide pair
@@ -201,6 +182,7 @@ impl RedWork {
             bias: vec![[0.0; 6]; nb],
             yv: vec![[0.0; 6]; nb],
             dx: vec![[0.0; 6]; nb],
+            c: vec![[0.0; 6]; nb],
         }
     }
 }

@@ -1,5 +1,8 @@
-//! The nodal reparametrization `q = Φ(u, qₙ)` of a tree (theory.md §4.5), parents before
-//! children, as increments (`R_b − I` and `Δφ_b`, so that nothing cancels):
+//! The iterate of the reduced iteration: each body's increment over the stage (`R_b − I`,
+//! `Δφ_b`, so that nothing cancels), updated by its own twist, and the joints' defects at it.
+//!
+//! A joint's defect is where its rows would place the child, parent held, with the joint
+//! increments read off the two bodies (`read_off`, exact where the rows hold), as a twist:
 //!
 //! ```text
 //! revolute, cylindrical, planar:  R_c = R_p exp(ϑ â₃ₙ)
@@ -57,16 +60,15 @@ fn increment(ws: &Work, b: usize) -> Mat3 {
     e
 }
 
-/// Stage start: records the joints' start data and turns the predictor's iterate (`ws.dq`,
-/// `ws.q`, any body increments) into joint increments, then places the bodies (`ws.q`, `ws.dq`
-/// satisfy the joint rows).
-///
-/// Parents before children, each joint's increments are read off the *placed* parent and the
-/// predicted child, and the child is placed at once: the joint takes up what the rows of its
-/// parent could not follow of the prediction, so the placed bodies stay as close to the
-/// predicted ones as the joints allow. (Relative increments read off two predicted bodies
-/// drop their off-axis parts, which add up down a chain: at N = 1000 the placed tip strayed
-/// 6e-3 from the prediction, whose own error was 1e-5.)
+/// Stage start: settles `qₙ` onto the rows every [`SETTLE_EVERY`] stages, records the joints'
+/// start data and makes each body of the predictor (`ws.dq`, `ws.q`) rigid: its increment is
+/// the rotation nearest to the predicted directors' (`rw.e`) and its centre-of-mass shift
+/// (`rw.dphi`). The bodies are not placed on the joint rows: the iteration corrects their
+/// defects (`defects`) within its linear solves, as the multiplier form does. (Placing the
+/// predictor parents first carries each joint's defect into its whole subtree: on chain1000 the
+/// placed start was 4× further from the solution than the prediction, and the placed iterates
+/// turned the far bodies along arcs, which made the reduced equations 1000× more nonlinear than
+/// the multiplier form's.)
 pub(crate) fn prepare(model: &Model, rw: &mut RedWork, ws: &mut Work) {
     if ws.memory.settle == 0 {
         settle(model, ws);
@@ -75,101 +77,107 @@ pub(crate) fn prepare(model: &Model, rw: &mut RedWork, ws: &mut Work) {
     ws.memory.settle -= 1;
     let zero = [Vec3::zeros(); 4];
     for b in 0..model.bodies.len() {
-        rw.e[b] = increment(ws, b);
+        rw.e[b] = rotation(&increment(ws, b));
         rw.dphi[b] = read3(&ws.dq, 12 * b);
         rw.u[b] = [0.0; 6];
-    }
-    for &b in &model.order {
+        write_body(ws, b, &rw.e[b], &rw.dphi[b]);
         let Some(j) = model.tree_joint[b] else {
-            rw.eabs[b] = rotation(&rw.e[b]);
-            let d = rw.dphi[b];
-            rw.u[b][3..6].copy_from_slice(d.as_slice());
-            place_body(model, rw, ws, b);
             continue;
         };
         let g = &model.joints[j].geom;
-        let p = model.parent[b];
-        let qa = p.map_or(zero, |p| body_nodes(&ws.qn, p));
+        let qa = model.parent[b].map_or(zero, |p| body_nodes(&ws.qn, p));
         let qb = body_nodes(&ws.qn, b);
         let (rho_a, rho_b) = levers(g, &qa, &qb);
-        let s = JointStart {
+        rw.start[b] = JointStart {
             a: std::array::from_fn(|k| g.a[k].eval(&qa, &qb)),
             b2: g.b[1].eval(&qa, &qb),
             r: g.r.eval(&qa, &qb),
             rho_a,
             rho_b,
         };
-        rw.start[b] = s;
-        let (ep, dp) = p.map_or((Mat3::zeros(), Vec3::zeros()), |p| (rw.e[p], rw.dphi[p]));
-        let eb = rw.e[b];
-        let rel = log_so3(&((Mat3::identity() + ep).transpose() * (Mat3::identity() + eb)));
-        let dr = rw.dphi[b] + eb * s.rho_b - dp - ep * s.rho_a - ep * s.r;
-        let slide = |k: usize| dr.dot(&(s.a[k] + ep * s.a[k]));
-        let u = &mut rw.u[b];
-        match g.kind {
-            T::Spherical => rw.eabs[b] = rotation(&eb),
-            T::Revolute => u[0] = rel.dot(&s.a[2]),
-            T::Universal => {
-                u[0] = rel.dot(&s.a[0]);
-                u[1] = rel.dot(&s.b2);
-            }
-            T::Cylindrical => {
-                u[0] = rel.dot(&s.a[2]);
-                u[1] = slide(2);
-            }
-            T::Prismatic => u[0] = slide(2),
-            T::Planar => {
-                u[0] = rel.dot(&s.a[2]);
-                u[1] = slide(0);
-                u[2] = slide(1);
-            }
-            T::Fixed => {}
-        }
-        place_body(model, rw, ws, b);
     }
 }
 
-/// Places every body from the joint increments: `rw.e`, `rw.dphi`, `ws.dq`, `ws.q`.
-pub(crate) fn place(model: &Model, rw: &mut RedWork, ws: &mut Work) {
-    for &b in &model.order {
-        place_body(model, rw, ws, b);
-    }
-}
-
-/// Places body `b` from its joint increments and its placed parent.
-fn place_body(model: &Model, rw: &mut RedWork, ws: &mut Work, b: usize) {
-    let u = rw.u[b];
-    let (e, dphi) = match model.tree_joint[b] {
-        None => (rw.eabs[b], Vec3::new(u[3], u[4], u[5])),
-        Some(j) => {
-            let s = &rw.start[b];
-            let (ep, dp) =
-                model.parent[b].map_or((Mat3::zeros(), Vec3::zeros()), |p| (rw.e[p], rw.dphi[p]));
-            let rel = |x: Mat3| ep + x + ep * x;
-            let along = |k: usize, v: f64| (s.a[k] + ep * s.a[k]) * v;
-            let (e, dr) = match model.joints[j].geom.kind {
-                T::Spherical => (rw.eabs[b], Vec3::zeros()),
-                T::Revolute => (rel(expm1_so3(&(s.a[2] * u[0]))), Vec3::zeros()),
-                T::Universal => {
-                    let x1 = expm1_so3(&(s.a[0] * u[0]));
-                    let x2 = expm1_so3(&(s.b2 * u[1]));
-                    (rel(x1 + x2 + x1 * x2), Vec3::zeros())
-                }
-                T::Cylindrical => (rel(expm1_so3(&(s.a[2] * u[0]))), ep * s.r + along(2, u[1])),
-                T::Prismatic => (ep, ep * s.r + along(2, u[0])),
-                T::Planar => (
-                    rel(expm1_so3(&(s.a[2] * u[0]))),
-                    ep * s.r + along(0, u[1]) + along(1, u[2]),
-                ),
-                T::Fixed => (ep, Vec3::zeros()),
-            };
-            (e, dp + ep * s.rho_a + dr - e * s.rho_b)
-        }
+/// Reads body `b`'s joint increments off its parent's increments and its own (`rw.u[b]`, and
+/// `rw.eabs[b]` for a spherical joint or a free root): the joint's own motion, without the
+/// parts its rows forbid.
+fn read_off(model: &Model, rw: &mut RedWork, b: usize) {
+    let eb = rw.e[b];
+    let Some(j) = model.tree_joint[b] else {
+        rw.eabs[b] = eb;
+        let d = rw.dphi[b];
+        rw.u[b][3..6].copy_from_slice(d.as_slice());
+        return;
     };
-    rw.e[b] = e;
-    rw.dphi[b] = dphi;
+    let s = rw.start[b];
+    let (ep, dp) =
+        model.parent[b].map_or((Mat3::zeros(), Vec3::zeros()), |p| (rw.e[p], rw.dphi[p]));
+    let turn = (Mat3::identity() + ep).transpose() * (Mat3::identity() + eb);
+    let rel = log_so3(&turn);
+    let dr = rw.dphi[b] + eb * s.rho_b - dp - ep * s.rho_a - ep * s.r;
+    let slide = |k: usize| dr.dot(&(s.a[k] + ep * s.a[k]));
+    let u = &mut rw.u[b];
+    match model.joints[j].geom.kind {
+        T::Spherical => rw.eabs[b] = eb,
+        T::Revolute => u[0] = rel.dot(&s.a[2]),
+        T::Universal => {
+            // turn = exp(α â₁ₙ) exp(β b̂₂ₙ) with a₁ₙ ⟂ b₂ₙ: turn b₂ₙ = exp(α â₁ₙ) b₂ₙ and
+            // turnᵀ a₁ₙ = exp(−β b̂₂ₙ) a₁ₙ (exact where the rows hold, so no defect appears)
+            let (a1, b2) = (s.a[0], s.b2);
+            let v = turn * b2;
+            let w = turn.transpose() * a1;
+            u[0] = b2.cross(&v).dot(&a1).atan2(b2.dot(&v));
+            u[1] = w.cross(&a1).dot(&b2).atan2(a1.dot(&w));
+        }
+        T::Cylindrical => {
+            u[0] = rel.dot(&s.a[2]);
+            u[1] = slide(2);
+        }
+        T::Prismatic => u[0] = slide(2),
+        T::Planar => {
+            u[0] = rel.dot(&s.a[2]);
+            u[1] = slide(0);
+            u[2] = slide(1);
+        }
+        T::Fixed => {}
+    }
+}
+
+/// Where the rows of body `b`'s joint place it (`R − I`, `Δφ`) from its parent's increments
+/// and its joint increments `rw.u[b]`, `rw.eabs[b]`.
+fn placed(model: &Model, rw: &RedWork, b: usize) -> (Mat3, Vec3) {
+    let u = rw.u[b];
+    let Some(j) = model.tree_joint[b] else {
+        return (rw.eabs[b], Vec3::new(u[3], u[4], u[5]));
+    };
+    let s = &rw.start[b];
+    let (ep, dp) =
+        model.parent[b].map_or((Mat3::zeros(), Vec3::zeros()), |p| (rw.e[p], rw.dphi[p]));
+    let rel = |x: Mat3| ep + x + ep * x;
+    let along = |k: usize, v: f64| (s.a[k] + ep * s.a[k]) * v;
+    let (e, dr) = match model.joints[j].geom.kind {
+        T::Spherical => (rw.eabs[b], Vec3::zeros()),
+        T::Revolute => (rel(expm1_so3(&(s.a[2] * u[0]))), Vec3::zeros()),
+        T::Universal => {
+            let x1 = expm1_so3(&(s.a[0] * u[0]));
+            let x2 = expm1_so3(&(s.b2 * u[1]));
+            (rel(x1 + x2 + x1 * x2), Vec3::zeros())
+        }
+        T::Cylindrical => (rel(expm1_so3(&(s.a[2] * u[0]))), ep * s.r + along(2, u[1])),
+        T::Prismatic => (ep, ep * s.r + along(2, u[0])),
+        T::Planar => (
+            rel(expm1_so3(&(s.a[2] * u[0]))),
+            ep * s.r + along(0, u[1]) + along(1, u[2]),
+        ),
+        T::Fixed => (ep, Vec3::zeros()),
+    };
+    (e, dp + ep * s.rho_a + dr - e * s.rho_b)
+}
+
+/// Writes body `b`'s increments (`R − I`, `Δφ`) to `ws.dq` and `ws.q`.
+fn write_body(ws: &mut Work, b: usize, e: &Mat3, dphi: &Vec3) {
     let o = 12 * b;
-    write3(&mut ws.dq, o, &dphi);
+    write3(&mut ws.dq, o, dphi);
     write3(&mut ws.q, o, &(read3(&ws.qn, o) + dphi));
     for i in 0..3 {
         let at = o + 3 + 3 * i;
@@ -177,6 +185,87 @@ fn place_body(model: &Model, rw: &mut RedWork, ws: &mut Work, b: usize) {
         write3(&mut ws.dq, at, &inc);
         write3(&mut ws.q, at, &(read3(&ws.qn, at) + inc));
     }
+}
+
+/// The joints' defects at the iterate, as body twists (`rw.c`): `c_b` takes body `b`, its
+/// parent held, to where its joint's rows place it with the joint increments read off the two
+/// bodies (zero for free roots). A linear solve whose body twists are `x_c = A x_p + S u + c_c`
+/// corrects the defects to first order (`G c = −g`, `G S = 0`), as the multiplier form's does.
+pub(crate) fn defects(model: &Model, rw: &mut RedWork) {
+    for &b in &model.order {
+        if model.tree_joint[b].is_none() {
+            rw.c[b] = [0.0; 6];
+            continue;
+        }
+        let (e, dphi) = target(model, rw, b);
+        // R_placed R_bᵀ − I = (E_placed − E_b)(I + E_b)ᵀ without cancellation; its axial vector
+        // (first order: the defect's square is corrected by the next solve)
+        let d = (e - rw.e[b]) * (Mat3::identity() + rw.e[b]).transpose();
+        let turn = Vec3::new(
+            d[(2, 1)] - d[(1, 2)],
+            d[(0, 2)] - d[(2, 0)],
+            d[(1, 0)] - d[(0, 1)],
+        ) * 0.5;
+        let shift = dphi - rw.dphi[b];
+        rw.c[b] = [shift.x, shift.y, shift.z, turn.x, turn.y, turn.z];
+    }
+}
+
+/// Where the rows of body `b`'s joint place it, parent held (`R − I`, `Δφ`): as `placed` with
+/// the increments of `read_off`, but for the pairs that turn about `a₃` without a
+/// trigonometric call. With the relative turn `T = R_pᵀ R_b` in the start joint frame,
+/// `M = Aᵀ T A`, the turn about `a₃ₙ` nearest to it has `(sin ϑ, cos ϑ) ∝ (M₁₀ − M₀₁, M₀₀ + M₁₁)`
+/// and `R − I = sin ϑ (a₂a₁ᵀ − a₁a₂ᵀ) + (cos ϑ − 1)(a₁a₁ᵀ + a₂a₂ᵀ)`, `cos ϑ − 1 =
+/// −sin²ϑ/(1 + cos ϑ)` (nothing cancels).
+fn target(model: &Model, rw: &mut RedWork, b: usize) -> (Mat3, Vec3) {
+    let Some(j) = model.tree_joint[b] else {
+        return (rw.e[b], rw.dphi[b]);
+    };
+    let kind = model.joints[j].geom.kind;
+    if kind == T::Universal {
+        read_off(model, rw, b);
+        return placed(model, rw, b);
+    }
+    let s = &rw.start[b];
+    let (ep, dp) =
+        model.parent[b].map_or((Mat3::zeros(), Vec3::zeros()), |p| (rw.e[p], rw.dphi[p]));
+    let eb = rw.e[b];
+    let e = match kind {
+        T::Revolute | T::Cylindrical | T::Planar => {
+            // T − I = E_pᵀ + E_b + E_pᵀ E_b, applied to a₁ₙ and a₂ₙ
+            let [a1, a2, _] = s.a;
+            let t = |a: &Vec3| {
+                let x = eb * a;
+                ep.tr_mul(&(a + x)) + x
+            };
+            let (t1, t2) = (t(&a1), t(&a2));
+            let sn = a2.dot(&t1) - a1.dot(&t2);
+            let cs = 2.0 + a1.dot(&t1) + a2.dot(&t2);
+            let n = sn.hypot(cs);
+            let (sn, cs) = (sn / n, cs / n);
+            let cm1 = if cs > 0.0 {
+                -sn * sn / (1.0 + cs)
+            } else {
+                cs - 1.0
+            };
+            let x = (a2 * a1.transpose() - a1 * a2.transpose()) * sn
+                + (a1 * a1.transpose() + a2 * a2.transpose()) * cm1;
+            ep + x + ep * x
+        }
+        T::Spherical => eb,
+        _ => ep,
+    };
+    let dr = rw.dphi[b] + eb * s.rho_b - dp - ep * s.rho_a - ep * s.r;
+    let along = |k: usize| {
+        let a = s.a[k] + ep * s.a[k];
+        a * dr.dot(&a)
+    };
+    let slid = match kind {
+        T::Prismatic | T::Cylindrical => ep * s.r + along(2),
+        T::Planar => ep * s.r + along(0) + along(1),
+        _ => Vec3::zeros(),
+    };
+    (e, dp + ep * s.rho_a + slid - e * s.rho_b)
 }
 
 /// Scaled size of the body updates of the last solve (`rw.dx`): `max_b |δφ_b|/lc, |δθ_b|`.
@@ -188,55 +277,36 @@ pub(crate) fn size(model: &Model, rw: &RedWork) -> f64 {
     })
 }
 
-/// Applies the solution of the last solve (`rw.res`: `δu` per body, `rw.dx`: body twists)
-/// to the joint increments and places the bodies.
+/// Applies the body twists of the last solve (`rw.dx`) to each body's own increments: the
+/// rotation `exp(δθ)` and the shift `δφ` (`rw.e`, `rw.dphi`, `ws.dq`, `ws.q`).
+///
+/// The bodies stay rigid; their joint rows err by the square of the update, which the next
+/// solve corrects (`defects`). The round-off of an update stays each body's own. (An update
+/// carried by joint increments of ≈ 16 digits loses the last correction of a joint near the
+/// root below the last place of its increment, and the residual stays at the subtree's inertia
+/// times that last place, `∝ N³` down a chain.)
 pub(crate) fn update(model: &Model, rw: &mut RedWork, ws: &mut Work) {
     for b in 0..model.bodies.len() {
         let x = rw.dx[b];
-        let dth = Vec3::new(x[3], x[4], x[5]);
-        let du = rw.res[b];
-        let kind = model.tree_joint[b].map(|j| model.joints[j].geom.kind);
-        match kind {
-            None | Some(T::Spherical) => {
-                let x = expm1_so3(&dth);
-                rw.eabs[b] = rw.eabs[b] + x + x * rw.eabs[b];
-                if kind.is_none() {
-                    for k in 3..6 {
-                        rw.u[b][k] += du[k];
-                    }
-                }
-            }
-            Some(_) => {
-                for k in 0..6 {
-                    rw.u[b][k] += du[k];
-                }
-            }
-        }
+        let turn = expm1_so3(&Vec3::new(x[3], x[4], x[5]));
+        rw.e[b] = turn + rw.e[b] + turn * rw.e[b];
+        rw.dphi[b] += Vec3::new(x[0], x[1], x[2]);
+        write_body(ws, b, &rw.e[b], &rw.dphi[b]);
     }
-    place(model, rw, ws);
 }
 
-/// Applies the body twists of the last solve (`rw.dx`) to each body's own increments, to first
-/// order (`Δφ += δφ`, `Δdᵢ += δθ × dᵢ`), without placing: the update that a stage accepts.
-///
-/// Its joint rows then err by `O(|δx|²)`, below `1e-20` at an accepted update. What it gains
-/// is round-off that stays each body's own: an update placed through the joints is carried by
-/// joint increments of ≈ 16 digits, so the last correction of a joint near the root, below the
-/// last place of its increment, is lost, and the residual stays at the subtree's inertia times
-/// that last place (`∝ N³` down a chain). Applied to the bodies, the correction is kept.
-pub(crate) fn update_bodies(model: &Model, rw: &RedWork, ws: &mut Work) {
-    for b in 0..model.bodies.len() {
-        let x = rw.dx[b];
-        let o = 12 * b;
-        let dth = Vec3::new(x[3], x[4], x[5]);
-        let dphi = read3(&ws.dq, o) + Vec3::new(x[0], x[1], x[2]);
-        write3(&mut ws.dq, o, &dphi);
-        write3(&mut ws.q, o, &(read3(&ws.qn, o) + dphi));
-        for i in 0..3 {
-            let at = o + 3 + 3 * i;
-            let inc = read3(&ws.dq, at) + dth.cross(&read3(&ws.q, at));
-            write3(&mut ws.dq, at, &inc);
-            write3(&mut ws.q, at, &(read3(&ws.qn, at) + inc));
+/// Test support: places every body, parents first, from the joint increments `rw.u`,
+/// `rw.eabs` (the nodal reparametrization `Φ(u)`); with `read` it first reads each joint's
+/// increments off the bodies (`read_off`).
+#[cfg(test)]
+pub(crate) fn place(model: &Model, rw: &mut RedWork, ws: &mut Work, read: bool) {
+    for &b in &model.order {
+        if read {
+            read_off(model, rw, b);
         }
+        let (e, dphi) = placed(model, rw, b);
+        rw.e[b] = e;
+        rw.dphi[b] = dphi;
+        write_body(ws, b, &e, &dphi);
     }
 }

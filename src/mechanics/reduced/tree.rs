@@ -1,13 +1,14 @@
 //! Elimination of the reduced Newton matrix `P̄ᵀ K Q` over the tree, leaves to root, in the
 //! manner of the articulated-body recursion (unsymmetric: `P̄` at the midpoint, `Q` at the
-//! iterate). With `x_c = A x_p + S u_c` (maps `Q`) and the child's equations `S̄ᵀ W_c + R_c = 0`,
-//! `W_c = K_c x_c + K_cp x_p + b_c` (`K_c` articulated, `b_c` the bias of its eliminated
-//! subtree):
+//! iterate). With `x_c = A x_p + S u_c + c_c` (maps `Q`, `c_c` the joint's defect,
+//! `place::defects`) and the child's equations `S̄ᵀ W_c + X_c x_c + X_p x_p + R_c = 0`
+//! (`X` the geometric stiffness of the joint equations), `W_c = K_c x_c + K_cp x_p + b_c`
+//! (`K_c` articulated, `b_c` the bias of its eliminated subtree):
 //!
 //! ```text
-//! D = S̄ᵀ K_c S,  Y = D⁻¹ S̄ᵀ (K_c A + K_cp),  H = Āᵀ K_c + K_pc
-//! u_c = −Y x_p − D⁻¹ (S̄ᵀ b_c + R_c)
-//! K_p += H A − (H S) Y + Āᵀ K_cp,   b_p += −H S D⁻¹ (S̄ᵀ b_c + R_c) + Āᵀ b_c
+//! D = S̄ᵀ K_c S + X_c S,  Y = D⁻¹ (S̄ᵀ (K_c A + K_cp) + X_c A + X_p),  H = Āᵀ K_c + K_pc
+//! e_c = S̄ᵀ (b_c + K_c c_c) + X_c c_c + R_c,  u_c = −Y x_p − D⁻¹ e_c
+//! K_p += H A − (H S) Y + Āᵀ K_cp,   b_p += −H (S D⁻¹ e_c − c_c) + Āᵀ b_c
 //! ```
 //!
 //! All blocks are 6 × 6 at most (`f ≤ 6` rates per joint), so one factorisation is O(N). The
@@ -186,10 +187,14 @@ pub(crate) fn solve(model: &Model, rw: &mut RedWork) {
     for &b in model.order.iter().rev() {
         let (m, mb) = (&rw.fq[b], &rw.fp[b]);
         let f = m.f();
+        // the joint's defect c moves the child: bias K c and the joint equations' X_c c
+        let c = rw.c[b];
+        let kc = mul_vec(&rw.kd[b], &c);
+        let biased: V6 = std::array::from_fn(|i| rw.bias[b][i] + kc[i]);
         let mut e = [0.0; 6];
-        mb.st_mul(&rw.bias[b], &mut e);
+        mb.st_mul(&biased, &mut e);
         for k in 0..f {
-            e[k] += rw.res[b][k];
+            e[k] += rw.res[b][k] + (0..6).map(|i| rw.xc[b][k][i] * c[i]).sum::<f64>();
         }
         let mut yv = [0.0; 6];
         for r in 0..f {
@@ -199,7 +204,10 @@ pub(crate) fn solve(model: &Model, rw: &mut RedWork) {
         }
         rw.yv[b] = yv;
         if let Some(p) = model.parent[b] {
-            let t = m.s_mul(&yv);
+            let mut t = m.s_mul(&yv);
+            for k in 0..6 {
+                t[k] -= c[k];
+            }
             let ht = mul_vec(&rw.hm[b], &t);
             let ab = mb.at_mul(&rw.bias[b]);
             for k in 0..6 {
@@ -224,7 +232,7 @@ pub(crate) fn solve(model: &Model, rw: &mut RedWork) {
         }
         let s = m.s_mul(&du);
         for k in 0..6 {
-            x[k] += s[k];
+            x[k] += s[k] + rw.c[b][k];
         }
         rw.dx[b] = x;
         rw.res[b] = du;
