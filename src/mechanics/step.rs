@@ -99,14 +99,15 @@ pub fn step_state(model: &Model, state: &mut State, h: f64) -> Result<StepStats,
         let table = if order4 { 1 + k } else { 0 };
         robust_stage(model, ws, &held, g * h, Some(table), 0, &mut stats)?;
     }
-    // commit
-    state.q.copy_from_slice(&ws.qn);
-    state.v.copy_from_slice(&ws.vn);
-    state.v_lo.copy_from_slice(&ws.vlo);
-    state.lam.copy_from_slice(&ws.lam);
-    state.angles.copy_from_slice(&ws.ang);
+    // commit by swapping buffers of equal length (the workspace's copies are overwritten at
+    // the start of the next step)
+    std::mem::swap(&mut state.q, &mut ws.qn);
+    std::mem::swap(&mut state.v, &mut ws.vn);
+    std::mem::swap(&mut state.v_lo, &mut ws.vlo);
+    std::mem::swap(&mut state.lam, &mut ws.lam);
+    std::mem::swap(&mut state.angles, &mut ws.ang);
     state.work = ws.work;
-    state.hist.copy_from_slice(&ws.hist);
+    std::mem::swap(&mut state.hist, &mut ws.hist);
     state.hprev = ws.hprev;
     state.memory = ws.memory;
     state.t += h;
@@ -161,7 +162,9 @@ fn robust_stage(
     ws.memory.multipliers = ws.memory.multipliers.saturating_sub(1);
     let mut first = stage(model, ws, held, h, table, reduced);
     if reduced {
-        if let Err(StepError::NoConvergence { .. } | StepError::Singular) = first {
+        // any failure of the reduced attempt (also a non-finite iterate, where its defects or
+        // arcs ran away) is handed to the multiplier form, which reports its own
+        if first.is_err() {
             stats.fallbacks += 1;
             ws.memory.multipliers = MULTIPLIER_STAGES;
             first = stage(model, ws, held, h, table, false);
