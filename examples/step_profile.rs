@@ -1,7 +1,8 @@
 //! Callgrind driver of the core step: `cargo build --profile profiling --example step_profile`,
 //! then `valgrind --tool=callgrind target/profiling/examples/step_profile dp 2000` (or
 //! `chain100 200`, `chainN` for any N, `top`, `free` (a free body near its unstable axis), `fourbar 2000`, `chain100_loop 50`,
-//! `chain400_loop`, `chain1000_loop`; an optional third argument is the step size, default
+//! `chain400_loop`, `chain1000_loop`, or a spec file `*.toml`/`*.json` (its solver settings
+//! ignored); an optional third argument is the step size, default
 //! 1e-3). Also prints the wall-clock time per step of the run (release build:
 //! `cargo run --release --example step_profile chain1000 2000`, the whole 2 s run of the peers'
 //! protocol), the iterations, the stages handed to the multiplier form, and on stderr the
@@ -40,6 +41,10 @@ fn main() {
         "chain100_loop" => common::chain_loop(100, None, 0.0, 0.0),
         "chain400_loop" => common::chain_loop(400, None, 0.0, 0.0),
         "chain1000_loop" => common::chain_loop(1000, None, 0.0, 0.0),
+        p if p.ends_with(".toml") || p.ends_with(".json") => {
+            let spec = triad::spec::Spec::from_path(std::path::Path::new(p)).expect("spec");
+            spec.lower().expect("lower").0
+        }
         _ => common::double_pendulum(),
     };
     let h: f64 = args.get(3).and_then(|x| x.parse().ok()).unwrap_or(1e-3);
