@@ -77,6 +77,9 @@ pub(crate) fn prepare(model: &Model, rw: &mut RedWork, ws: &mut Work) {
     ws.memory.settle -= 1;
     let zero = [Vec3::zeros(); 4];
     for b in 0..model.bodies.len() {
+        // the nearest rotation, not the increment itself: read off directors that are
+        // orthonormal only to round-off, the increment is a rotation only to round-off, and
+        // carried from stage to stage that error grew (heavy top: to 1e-2 within 2 s)
         rw.e[b] = rotation(&increment(ws, b));
         rw.dphi[b] = read3(&ws.dq, 12 * b);
         rw.u[b] = [0.0; 6];
