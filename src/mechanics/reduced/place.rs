@@ -43,9 +43,12 @@ fn log_so3(r: &Mat3) -> Vec3 {
     v * (s.atan2(c) / s)
 }
 
-/// `R − I` of the rotation nearest (by its rotation vector) to `I + e`.
+/// `R − I` for the rotation `R` nearest to `I + e` when `I + e` is orthogonal to round-off:
+/// one Newton–Schulz step `X (3I − XᵀX)/2` in increments, `e − (I + e) S/2` with
+/// `S = XᵀX − I = e + eᵀ + eᵀe` (squares the orthogonality error, nothing cancels).
 fn rotation(e: &Mat3) -> Mat3 {
-    expm1_so3(&log_so3(&(Mat3::identity() + e)))
+    let s = e + e.transpose() + e.transpose() * e;
+    e - (Mat3::identity() + e) * s * 0.5
 }
 
 /// `R − I` of the rotation that takes the directors `dₙ` of body `b` to those of `q`
