@@ -156,21 +156,21 @@ fn run(
         if it > 1 {
             best = best.min(theta);
         }
-        if let Some(error) = accepted(model, it, res, upd, theta, best, chord_accept) {
-            update(model, rw, ws);
-            return Ok(Converged {
-                iterations: it,
-                factorizations,
-                error,
-            });
-        }
-        if it >= maxit || (theta > GIVE_UP && since_factor == 2) {
+        let accept = accepted(model, it, res, upd, theta, best, chord_accept);
+        if accept.is_none() && (it >= maxit || (theta > GIVE_UP && since_factor == 2)) {
             return Err(StepError::NoConvergence {
                 iterations: it,
                 residual: res.max(upd),
             });
         }
         update(model, rw, ws);
+        if let Some(error) = accept {
+            return Ok(Converged {
+                iterations: it,
+                factorizations,
+                error,
+            });
+        }
         if theta > REFACTOR && since_factor >= 2 && it > 2 && upd > 1e-2 * tol {
             ws.memory.eager = EAGER_STAGES;
         }

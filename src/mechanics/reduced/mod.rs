@@ -70,10 +70,12 @@ pub(crate) struct JointStart {
 /// does not cover).
 #[derive(Clone, Debug, Default)]
 pub(crate) struct RedWork {
-    /// Joint increments of the iterate, 6 slots per body (rotational rates first; the slots of
+    /// Joint increments read off the bodies (`place::read_off`; the universal joints' defects
+    /// and the tests' placement `Φ(u)`), 6 slots per body (rotational first; the slots of
     /// absolute rotations are unused, see `eabs`).
     pub u: Vec<V6>,
-    /// `R − I` of the absolute rotation increment of spherical children and free roots.
+    /// `R − I` of the absolute rotation increment of spherical children and free roots (the
+    /// tests' placement `Φ(u)`).
     pub eabs: Vec<Mat3>,
     /// `R − I` of every body's rotation increment over the stage (placement).
     pub e: Vec<Mat3>,

@@ -85,7 +85,6 @@ pub(crate) fn prepare(model: &Model, rw: &mut RedWork, ws: &mut Work) {
         // carried from stage to stage that error grew (heavy top: to 1e-2 within 2 s)
         rw.e[b] = rotation(&increment(ws, b));
         rw.dphi[b] = read3(&ws.dq, 12 * b);
-        rw.u[b] = [0.0; 6];
         write_body(ws, b, &rw.e[b], &rw.dphi[b]);
         let Some(j) = model.tree_joint[b] else {
             continue;
@@ -119,13 +118,14 @@ fn read_off(model: &Model, rw: &mut RedWork, b: usize) {
     let (ep, dp) =
         model.parent[b].map_or((Mat3::zeros(), Vec3::zeros()), |p| (rw.e[p], rw.dphi[p]));
     let turn = (Mat3::identity() + ep).transpose() * (Mat3::identity() + eb);
-    let rel = log_so3(&turn);
+    // the turn about a₃ₙ (only the pairs that have one)
+    let about3 = || log_so3(&turn).dot(&s.a[2]);
     let dr = rw.dphi[b] + eb * s.rho_b - dp - ep * s.rho_a - ep * s.r;
     let slide = |k: usize| dr.dot(&(s.a[k] + ep * s.a[k]));
     let u = &mut rw.u[b];
     match model.joints[j].geom.kind {
         T::Spherical => rw.eabs[b] = eb,
-        T::Revolute => u[0] = rel.dot(&s.a[2]),
+        T::Revolute => u[0] = about3(),
         T::Universal => {
             // turn = exp(α â₁ₙ) exp(β b̂₂ₙ) with a₁ₙ ⟂ b₂ₙ: turn b₂ₙ = exp(α â₁ₙ) b₂ₙ and
             // turnᵀ a₁ₙ = exp(−β b̂₂ₙ) a₁ₙ (exact where the rows hold, so no defect appears)
@@ -136,12 +136,12 @@ fn read_off(model: &Model, rw: &mut RedWork, b: usize) {
             u[1] = w.cross(&a1).dot(&b2).atan2(a1.dot(&w));
         }
         T::Cylindrical => {
-            u[0] = rel.dot(&s.a[2]);
+            u[0] = about3();
             u[1] = slide(2);
         }
         T::Prismatic => u[0] = slide(2),
         T::Planar => {
-            u[0] = rel.dot(&s.a[2]);
+            u[0] = about3();
             u[1] = slide(0);
             u[2] = slide(1);
         }

@@ -227,6 +227,20 @@ fn with_pair(kind: crate::mechanics::JointType) -> ModelDef {
     def
 }
 
+/// Every lower pair (the settling and defect tests put each in `with_pair`).
+const PAIRS: [crate::mechanics::JointType; 7] = {
+    use crate::mechanics::JointType as T;
+    [
+        T::Prismatic,
+        T::Cylindrical,
+        T::Universal,
+        T::Planar,
+        T::Fixed,
+        T::Revolute,
+        T::Spherical,
+    ]
+};
+
 /// Largest joint row and internal row (`dᵢ·dⱼ − δᵢⱼ`) at `q`.
 fn worst_rows(model: &Model, q: &[f64]) -> f64 {
     let mut worst = 0.0_f64;
@@ -252,16 +266,7 @@ fn worst_rows(model: &Model, q: &[f64]) -> f64 {
 /// it is: every pair, a free root and the world as parents.
 #[test]
 fn settle_puts_the_stage_start_back_on_the_rows() {
-    use crate::mechanics::JointType as T;
-    for kind in [
-        T::Prismatic,
-        T::Cylindrical,
-        T::Universal,
-        T::Planar,
-        T::Fixed,
-        T::Revolute,
-        T::Spherical,
-    ] {
+    for kind in PAIRS {
         let model = Model::new(&with_pair(kind), SolverSettings::default()).expect("model");
         let mut ws = Work::new(&model);
         ws.qn.copy_from_slice(&model.q0);
@@ -291,21 +296,12 @@ fn settle_puts_the_stage_start_back_on_the_rows() {
 
 /// The defects (`place::defects`) enter the linear solve so that its update corrects the
 /// joint rows to first order (`G c = −g`, `G S = 0`): from rigid, predictor-like increments
-/// whose rows are off by O(s) (no motion, so the rows are off by the increments alone), one solve with a zero reduced residual and its update leave
-/// them at O(s²), for every pair, a free root and the world as parents.
+/// whose rows are off by O(s) (no motion, so the rows are off by the increments alone), one
+/// solve with a zero reduced residual and its update leave them at O(s²), for every pair, a
+/// free root and the world as parents.
 #[test]
 fn one_solve_corrects_the_defects_to_first_order() {
-    use crate::mechanics::JointType as T;
-    let pairs = [
-        T::Prismatic,
-        T::Cylindrical,
-        T::Universal,
-        T::Planar,
-        T::Fixed,
-        T::Revolute,
-        T::Spherical,
-    ];
-    for kind in pairs {
+    for kind in PAIRS {
         let def = with_pair(kind);
         let mut after = [0.0; 2];
         for (i, scale) in [1e-4, 1e-5].into_iter().enumerate() {
