@@ -24,9 +24,9 @@
 //! linear start, 2.0 with this one; at order 4, 10.3 → 6.0 per step of three stages).
 
 use super::assemble::{read3, write3};
-use super::kernels::expm1_so3;
 use super::model::Model;
 use super::work::{Work, HISTORY};
+use crate::math::skew;
 use crate::math::Vec3;
 
 /// Highest extrapolation degree (its error is judged by the difference of the next order).
@@ -64,15 +64,11 @@ pub(crate) fn predict(model: &Model, ws: &mut Work, h: f64, table: Option<usize>
         let inc = vbar * h;
         write3(&mut ws.dq, o, &inc);
         write3(&mut ws.q, o, &(read3(&ws.qn, o) + inc));
-        // Cayley vector θ = h ω̄ ↔ rotation angle 2 atan(|θ|/2)
+        // the Cayley rotation of θ = h ω̄: cay(θ) − I = 4/(4 + |θ|²) (θ̂ + θ̂²/2), exact and
+        // without a trigonometric call (the rotation by 2 atan(|θ|/2) about θ)
         let th = wbar * h;
-        let n = th.norm();
-        let rv = if n > 0.0 {
-            th * (2.0 * (0.5 * n).atan() / n)
-        } else {
-            th
-        };
-        let em1 = expm1_so3(&rv);
+        let k = skew(&th);
+        let em1 = (k + k * k * 0.5) * (4.0 / (4.0 + th.norm_squared()));
         for i in 0..3 {
             let dn = read3(&ws.qn, o + 3 + 3 * i);
             let inc = em1 * dn;

@@ -65,9 +65,8 @@ pub(crate) fn evaluate(
     for (j, jt) in model.joints.iter().enumerate() {
         let c = jt.child;
         if jac {
+            // `kcp`, `kpc` are read only where `coupled`
             rw.coupled[c] = false;
-            rw.kcp[c] = [[0.0; 6]; 6];
-            rw.kpc[c] = [[0.0; 6]; 6];
         }
         if !loaded(model, held, j) {
             continue;
@@ -131,13 +130,18 @@ fn add_turn(k: &mut [[f64; 6]; 6], r0: usize, c0: usize, s: f64, f: &Vec3, v: &V
 /// for every pair but the slides, whose midpoint directions `ā₁ × ā₂` are taken to turn
 /// rigidly and whose lever `r̄` to turn with the parent only (an O(h) error in these terms).
 /// Into `rw.xc`, `rw.xp` (rows of `b`'s joint rates, columns of the body twists of `b` and its
-/// parent) for `S̄ᵀ W`, and into `rw.kd` of the parent and `rw.kpc[b]` for `Āᵀ W`.
+/// parent) for `S̄ᵀ W`, and into `rw.kd` of the parent and `rw.gpc[b]` for `Āᵀ W`.
 fn geometric_stiffness(model: &Model, rw: &mut RedWork, b: usize, pm: &Map, qm: &Map) {
     let w = rw.w[b];
     let f = Vec3::new(w[0], w[1], w[2]);
     let m = Vec3::new(w[3], w[4], w[5]);
-    let mut xc = [[0.0; 6]; 6];
-    let mut xp = [[0.0; 6]; 6];
+    // only the rows of the joint's rates are read
+    let rows = pm.f();
+    let (xc, xp) = (&mut rw.xc[b], &mut rw.xp[b]);
+    for r in 0..rows {
+        xc[r] = [0.0; 6];
+        xp[r] = [0.0; 6];
+    }
     let kind = model.tree_joint[b].map(|j| model.joints[j].geom.kind);
     if let Some(kind) = kind {
         let mj = m + f.cross(&pm.rho);
@@ -147,8 +151,8 @@ fn geometric_stiffness(model: &Model, rw: &mut RedWork, b: usize, pm: &Map, qm: 
             let t = qm.n[k].cross(&mj) * 0.5;
             let owner = match (kind, k) {
                 (JointType::Spherical, _) => None,
-                (JointType::Universal, 1) => Some(&mut xc),
-                _ => Some(&mut xp),
+                (JointType::Universal, 1) => Some(&mut *xc),
+                _ => Some(&mut *xp),
             };
             if let Some(x) = owner {
                 for i in 0..3 {
@@ -169,16 +173,16 @@ fn geometric_stiffness(model: &Model, rw: &mut RedWork, b: usize, pm: &Map, qm: 
             }
         }
     }
-    rw.xc[b] = xc;
-    rw.xp[b] = xp;
     // Āᵀ W: δē × f with ē = Eᴬ − Z ρ̄ (Eᴬ fixed in the parent, ρ̄ in the child)
     if let Some(p) = model.parent[b] {
         let ea = qm.e + if qm.z { qm.rho } else { Vec3::zeros() };
         add_turn(&mut rw.kd[p], 3, 3, -0.5, &f, &ea);
-        if qm.z {
-            add_turn(&mut rw.kpc[b], 3, 3, 0.5, &f, &qm.rho);
-            rw.coupled[b] = true;
-        }
+        // ½ ((f·ρ) I − ρ fᵀ), as `add_turn` (turn columns of the child)
+        let s = if qm.z { 0.5 } else { 0.0 };
+        let fr = f.dot(&qm.rho);
+        rw.gpc[b] = std::array::from_fn(|i| {
+            std::array::from_fn(|j| s * (if i == j { fr } else { 0.0 } - qm.rho[i] * f[j]))
+        });
     }
 }
 

@@ -64,6 +64,10 @@ pub(crate) struct JointStart {
     pub rho_a: Vec3,
     /// Joint point from the child's centre of mass (m).
     pub rho_b: Vec3,
+    /// `a₂a₁ᵀ − a₁a₂ᵀ`: the turn about `a₃` is `I + sin ϑ ·skew3 + (cos ϑ − 1)·plane3`.
+    pub skew3: Mat3,
+    /// `a₁a₁ᵀ + a₂a₂ᵀ` (see `skew3`).
+    pub plane3: Mat3,
 }
 
 /// Preallocated workspace of the reduced Newton iteration (body-indexed; empty for models it
@@ -98,8 +102,10 @@ pub(crate) struct RedWork {
     pub xc: Vec<[[f64; 6]; 6]>,
     /// See `xc`.
     pub xp: Vec<[[f64; 6]; 6]>,
-    /// Whether `kcp`, `kpc` of the body hold anything.
+    /// Whether `kcp`, `kpc` of the body hold anything (else they are not read).
     pub coupled: Vec<bool>,
+    /// The geometric stiffness's part of `K_pc`: its moment rows and turn columns (3 × 3).
+    pub gpc: Vec<[[f64; 3]; 3]>,
     /// `Q` maps at the iterate (set in a Jacobian pass).
     pub q: Vec<Map>,
     /// `P̄` maps at the midpoint (every pass).
@@ -159,6 +165,8 @@ impl RedWork {
             r: Vec3::zeros(),
             rho_a: Vec3::zeros(),
             rho_b: Vec3::zeros(),
+            skew3: Mat3::zeros(),
+            plane3: Mat3::zeros(),
         };
         Self {
             u: vec![[0.0; 6]; nb],
@@ -174,6 +182,7 @@ impl RedWork {
             xc: vec![z6; nb],
             xp: vec![z6; nb],
             coupled: vec![false; nb],
+            gpc: vec![[[0.0; 3]; 3]; nb],
             q: vec![Map::free(); nb],
             p: vec![Map::free(); nb],
             fq: vec![Map::free(); nb],

@@ -93,12 +93,15 @@ pub(crate) fn prepare(model: &Model, rw: &mut RedWork, ws: &mut Work) {
         let qa = model.parent[b].map_or(zero, |p| body_nodes(&ws.qn, p));
         let qb = body_nodes(&ws.qn, b);
         let (rho_a, rho_b) = levers(g, &qa, &qb);
+        let a: [Vec3; 3] = std::array::from_fn(|k| g.a[k].eval(&qa, &qb));
         rw.start[b] = JointStart {
-            a: std::array::from_fn(|k| g.a[k].eval(&qa, &qb)),
+            a,
             b2: g.b[1].eval(&qa, &qb),
             r: g.r.eval(&qa, &qb),
             rho_a,
             rho_b,
+            skew3: a[1] * a[0].transpose() - a[0] * a[1].transpose(),
+            plane3: a[0] * a[0].transpose() + a[1] * a[1].transpose(),
         };
     }
 }
@@ -205,13 +208,14 @@ pub(crate) fn defects(model: &Model, rw: &mut RedWork) {
         }
         let (e, dphi) = target(model, rw, b);
         // R_placed R_bᵀ − I = (E_placed − E_b)(I + E_b)ᵀ without cancellation; its axial vector
-        // (first order: the defect's square is corrected by the next solve)
-        let d = (e - rw.e[b]) * (Mat3::identity() + rw.e[b]).transpose();
-        let turn = Vec3::new(
-            d[(2, 1)] - d[(1, 2)],
-            d[(0, 2)] - d[(2, 0)],
-            d[(1, 0)] - d[(0, 1)],
-        ) * 0.5;
+        // (first order: the defect's square is corrected by the next solve), from the
+        // off-diagonal entries only: d_ij = (row i of E_placed − E_b)·(row j of I + E_b)
+        let x = e - rw.e[b];
+        let y = Mat3::identity() + rw.e[b];
+        let d = |i: usize, j: usize| {
+            x[(i, 0)] * y[(j, 0)] + x[(i, 1)] * y[(j, 1)] + x[(i, 2)] * y[(j, 2)]
+        };
+        let turn = Vec3::new(d(2, 1) - d(1, 2), d(0, 2) - d(2, 0), d(1, 0) - d(0, 1)) * 0.5;
         let shift = dphi - rw.dphi[b];
         rw.c[b] = [shift.x, shift.y, shift.z, turn.x, turn.y, turn.z];
     }
@@ -247,15 +251,15 @@ fn target(model: &Model, rw: &mut RedWork, b: usize) -> (Mat3, Vec3) {
             let (t1, t2) = (t(&a1), t(&a2));
             let sn = a2.dot(&t1) - a1.dot(&t2);
             let cs = 2.0 + a1.dot(&t1) + a2.dot(&t2);
-            let n = sn.hypot(cs);
+            // |(sn, cs)| ≈ 2 (no overflow to guard against)
+            let n = (sn * sn + cs * cs).sqrt();
             let (sn, cs) = (sn / n, cs / n);
             let cm1 = if cs > 0.0 {
                 -sn * sn / (1.0 + cs)
             } else {
                 cs - 1.0
             };
-            let x = (a2 * a1.transpose() - a1 * a2.transpose()) * sn
-                + (a1 * a1.transpose() + a2 * a2.transpose()) * cm1;
+            let x = s.skew3 * sn + s.plane3 * cm1;
             ep + x + ep * x
         }
         T::Spherical => eb,

@@ -38,6 +38,16 @@ fn right_a(x: &M6, m: &Map) -> M6 {
     out
 }
 
+/// Row `x` times `A` (`[x_f, e × x_f + Z x_m]`, as a row of [`right_a`]).
+fn right_a_row(x: &V6, m: &Map) -> V6 {
+    let xf = Vec3::new(x[0], x[1], x[2]);
+    let mut r = m.e.cross(&xf);
+    if m.z {
+        r += Vec3::new(x[3], x[4], x[5]);
+    }
+    [x[0], x[1], x[2], r.x, r.y, r.z]
+}
+
 /// `Āᵀ X` (each column through [`Map::at_mul`]).
 fn left_at(m: &Map, x: &M6) -> M6 {
     let mut out = [[0.0; 6]; 6];
@@ -85,28 +95,26 @@ pub(crate) fn factor(model: &Model, rw: &mut RedWork) -> bool {
     std::mem::swap(&mut rw.fp, &mut rw.p);
     for &b in model.order.iter().rev() {
         let (m, mb) = (&rw.fq[b], &rw.fp[b]);
-        let k = rw.kd[b];
+        let k = &rw.kd[b];
         let f = m.f();
-        // K S (columns) and D = S̄ᵀ K S
-        let mut ks = [[0.0; 6]; 6];
-        let mut d = [[0.0; 6]; 6];
+        // D = S̄ᵀ K S + X_c S
+        let d = &mut rw.dinv[b];
         let xc = &rw.xc[b];
         for c in 0..f {
             let sc = m.s_col(c);
-            ks[c] = mul_vec(&k, &sc);
+            let ks = mul_vec(k, &sc);
             let mut col = [0.0; 6];
-            mb.st_mul(&ks[c], &mut col);
+            mb.st_mul(&ks, &mut col);
             for r in 0..f {
                 d[r][c] = col[r] + (0..6).map(|i| xc[r][i] * sc[i]).sum::<f64>();
             }
         }
-        if !invert(&mut d, f) {
+        if !invert(d, f) {
             return false;
         }
-        rw.dinv[b] = d;
         let Some(p) = model.parent[b] else { continue };
         let coupled = rw.coupled[b];
-        let mut ka = right_a(&k, m);
+        let mut ka = right_a(k, m);
         if coupled {
             for i in 0..6 {
                 for j in 0..6 {
@@ -114,7 +122,8 @@ pub(crate) fn factor(model: &Model, rw: &mut RedWork) -> bool {
                 }
             }
         }
-        // G = S̄ᵀ (K A + K_cp) (f × 6), Y = D⁻¹ G
+        // G = S̄ᵀ (K A + K_cp) + X_c A + X_p (f × 6; the geometric stiffness of the joint
+        // equations), Y = D⁻¹ G
         let mut g = [[0.0; 6]; 6];
         for c in 0..6 {
             let col: V6 = std::array::from_fn(|i| ka[i][c]);
@@ -124,15 +133,15 @@ pub(crate) fn factor(model: &Model, rw: &mut RedWork) -> bool {
                 g[r][c] = t[r];
             }
         }
-        // + X_c A + X_p (geometric stiffness of the joint equations)
-        let xca = right_a(xc, m);
         for r in 0..f {
+            let xa = right_a_row(&xc[r], m);
             for c in 0..6 {
-                g[r][c] += xca[r][c] + rw.xp[b][r][c];
+                g[r][c] += xa[c] + rw.xp[b][r][c];
             }
         }
-        let mut y = [[0.0; 6]; 6];
+        let y = &mut rw.y[b];
         for r in 0..f {
+            y[r] = [0.0; 6];
             for l in 0..f {
                 let s = d[r][l];
                 for c in 0..6 {
@@ -140,9 +149,9 @@ pub(crate) fn factor(model: &Model, rw: &mut RedWork) -> bool {
                 }
             }
         }
-        rw.y[b] = y;
-        // H = Āᵀ K + K_pc
-        let mut hm = left_at(mb, &k);
+        // H = Āᵀ K + K_pc (the joint loads' and the geometric stiffness's)
+        let hm = &mut rw.hm[b];
+        *hm = left_at(mb, k);
         if coupled {
             for i in 0..6 {
                 for j in 0..6 {
@@ -150,11 +159,15 @@ pub(crate) fn factor(model: &Model, rw: &mut RedWork) -> bool {
                 }
             }
         }
-        rw.hm[b] = hm;
+        for i in 0..3 {
+            for j in 0..3 {
+                hm[3 + i][3 + j] += rw.gpc[b][i][j];
+            }
+        }
         // K_p += H A − (H S) Y + Āᵀ K_cp
-        let mut upd = right_a(&hm, m);
+        let mut upd = right_a(hm, m);
         for c in 0..f {
-            let hs = mul_vec(&hm, &m.s_col(c));
+            let hs = mul_vec(hm, &m.s_col(c));
             for i in 0..6 {
                 for j in 0..6 {
                     upd[i][j] -= hs[i] * y[c][j];
