@@ -14,7 +14,7 @@ use crate::mechanics::def::{
 };
 use crate::mechanics::kinematics::initial_configuration;
 use crate::mechanics::model::Model;
-use crate::mechanics::newton::{evaluate, resolve, solve, update, Held, Mode, Work};
+use crate::mechanics::newton::{evaluate, resolve, solve, stage_rates, update, Held, Mode, Work};
 use crate::mechanics::projection::{project_velocities, ProjWork};
 
 /// The joints' damping and stiffness as defined (the `Held` parameters of a step).
@@ -204,6 +204,8 @@ fn assert_newton_agrees(def: &ModelDef, tol: f64, coupled: bool) -> f64 {
         stiffness: &stiffness,
     };
     let h = 0.01;
+    stage_rates(&mut wd, h);
+    stage_rates(&mut wb, h);
     let nb = md.bodies.len();
     // a nontrivial iterate: increments and multipliers
     wd.drhs.fill(0.0);
@@ -326,6 +328,7 @@ fn residual_mode_keeps_the_border() {
     let def = chain_loop(8, Some(2), AX);
     let m = Model::new(&def, SolverSettings::default()).expect("model");
     let mut ws = Work::new(&m);
+    stage_rates(&mut ws, 0.01);
     let (damping, stiffness) = joint_parameters(&def);
     let held = Held {
         inputs: &[],

@@ -34,9 +34,9 @@ pub(crate) fn finish(model: &Model, ws: &mut Work, held: &Held, h: f64) -> f64 {
     let nb = model.bodies.len();
     ws.set_midpoint();
     for b in 0..nb {
-        // a = Δq − h vₙ with one rounding (fused multiply-add) plus the low part of vₙ
+        // a = Δq − h vₙ − h v_lo (see `newton::stage_rates`)
         for k in 12 * b..12 * b + 12 {
-            ws.acc[k] = (-h).mul_add(ws.vn[k], ws.dq[k]) - h * ws.vlo[k];
+            ws.acc[k] = (ws.dq[k] - ws.hv[k]) - ws.hv_lo[k];
         }
         let th = rotation_increment(&body_nodes(&ws.qn, b), &body_nodes(&ws.q, b));
         for k in 0..3 {

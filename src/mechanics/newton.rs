@@ -156,6 +156,19 @@ pub(crate) fn evaluate(model: &Model, ws: &mut Work, held: &Held, h: f64, mode: 
     Norms { res }
 }
 
+/// Sets `ws.hv`, `ws.hv_lo` for a stage of size `h` from its start velocities: `h vₙ` rounded,
+/// and the rest of `h (vₙ + v_lo)` (the product's rounding error, exact by a fused
+/// multiply-add, plus `h v_lo`). An evaluation's `a = Δq − h vₙ` is then `(Δq − hv) − hv_lo`:
+/// `Δq − hv` is exact while `Δq` is within a factor 2 of `h vₙ` (Sterbenz), so `a` carries
+/// about one rounding of its own size, as one fused multiply-add per evaluation would.
+pub(crate) fn stage_rates(ws: &mut Work, h: f64) {
+    for k in 0..ws.hv.len() {
+        let p = h * ws.vn[k];
+        ws.hv[k] = p;
+        ws.hv_lo[k] = h.mul_add(ws.vn[k], -p) + h * ws.vlo[k];
+    }
+}
+
 /// The inertia and gravity terms of every body's node residual `ws.rn` (and `ws.acc`; in a
 /// Jacobian pass its node coupling `ws.cbody`, cleared `ws.xbody`), joint torques `ws.mom`
 /// cleared, and the body forces.
@@ -166,9 +179,9 @@ pub(crate) fn inertia_and_forces(model: &Model, ws: &mut Work, held: &Held, h: f
     // body inertia and applied forces, node form
     for b in 0..nb {
         let br = &model.bodies[b];
-        // a = Δq − h vₙ with one rounding (fused multiply-add) plus the low part of vₙ
+        // a = Δq − h vₙ − h v_lo (see `stage_rates`)
         for k in 12 * b..12 * b + 12 {
-            ws.acc[k] = (-h).mul_add(ws.vn[k], ws.dq[k]) - h * ws.vlo[k];
+            ws.acc[k] = (ws.dq[k] - ws.hv[k]) - ws.hv_lo[k];
         }
         let dq = body_nodes(&ws.acc, b);
         let mut r = [Vec3::zeros(); 4];

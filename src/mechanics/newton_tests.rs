@@ -152,6 +152,7 @@ fn assert_jacobian(def: &ModelDef, stiffness: &[f64], damping: &[f64], scale: f6
     let nb = model.bodies.len();
     ws.qn.copy_from_slice(&model.q0);
     ws.vn.copy_from_slice(&model.v0);
+    super::stage_rates(&mut ws, h);
     ws.q.copy_from_slice(&model.q0);
     ws.dq.fill(0.0);
     ws.drhs.fill(0.0);
@@ -213,6 +214,7 @@ fn residual_mode_matches_full_and_keeps_matrices() {
             stiffness: &stiffness,
         };
         let h = 0.05;
+        super::stage_rates(&mut ws, h);
         // a nontrivial iterate: a first Newton update from the start, multipliers
         evaluate(&model, &mut ws, &held, h, Mode::Full);
         assert!(solve(&model, &mut ws));

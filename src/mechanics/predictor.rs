@@ -26,8 +26,7 @@
 use super::assemble::{read3, write3};
 use super::model::Model;
 use super::work::{Work, HISTORY};
-use crate::math::skew;
-use crate::math::Vec3;
+use crate::math::{skew, Mat3, Vec3};
 
 /// Highest extrapolation degree (its error is judged by the difference of the next order).
 pub const MAX_DEGREE: usize = HISTORY - 2;
@@ -67,8 +66,10 @@ pub(crate) fn predict(model: &Model, ws: &mut Work, h: f64, table: Option<usize>
         // the Cayley rotation of θ = h ω̄: cay(θ) − I = 4/(4 + |θ|²) (θ̂ + θ̂²/2), exact and
         // without a trigonometric call (the rotation by 2 atan(|θ|/2) about θ)
         let th = wbar * h;
-        let k = skew(&th);
-        let em1 = (k + k * k * 0.5) * (4.0 / (4.0 + th.norm_squared()));
+        // θ̂² = θθᵀ − |θ|² I
+        let n2 = th.norm_squared();
+        let em1 =
+            (skew(&th) + (th * th.transpose() - Mat3::identity() * n2) * 0.5) * (4.0 / (4.0 + n2));
         for i in 0..3 {
             let dn = read3(&ws.qn, o + 3 + 3 * i);
             let inc = em1 * dn;
@@ -86,9 +87,11 @@ pub(crate) fn predict(model: &Model, ws: &mut Work, h: f64, table: Option<usize>
 /// the lower one on ties (a body at rest).
 fn extrapolate(hist: &[f64], stride: usize, b: usize, lc: f64) -> (Vec3, Vec3) {
     let d = |k: usize, i: usize| read3(hist, k * stride + 6 * b + i);
+    let ilc2 = 1.0 / (lc * lc);
     let mut best = (f64::INFINITY, 0);
     for p in 0..=MAX_DEGREE {
-        let err = (d(p + 1, 0).norm() / lc).max(d(p + 1, 3).norm());
+        // squared sizes (the same order)
+        let err = (d(p + 1, 0).norm_squared() * ilc2).max(d(p + 1, 3).norm_squared());
         if err < best.0 {
             best = (err, p);
         }

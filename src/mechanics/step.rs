@@ -12,7 +12,7 @@
 use super::error::StepError;
 use super::finish::finish;
 use super::model::Model;
-use super::newton::{evaluate, resolve, solve, update, Held, Mode, Work};
+use super::newton::{evaluate, resolve, solve, stage_rates, update, Held, Mode, Work};
 use super::predictor::{invalidate, predict, record};
 use super::state::State;
 
@@ -202,6 +202,7 @@ fn stage(
 ) -> Result<StepStats, StepError> {
     let nb = model.bodies.len();
     predict(model, ws, h, table);
+    stage_rates(ws, h);
     let tol = model.settings().tolerance;
     let chord_accept = (CHORD_ACCEPT * tol).max(FLOOR_SHARE * f64::EPSILON * nb as f64);
     let (it, factorizations, last_res) = if reduced {
@@ -216,8 +217,9 @@ fn stage(
         return Err(StepError::NonFinite("state"));
     }
     // v_{n+1} = vₙ + 2a/h in double-double (two-sum), a from the final evaluation
+    let two_over_h = 2.0 / h;
     for k in 0..ws.q.len() {
-        let c = ws.vlo[k] + 2.0 * ws.acc[k] / h;
+        let c = ws.vlo[k] + ws.acc[k] * two_over_h;
         let (hi, lo) = two_sum(ws.vn[k], c);
         ws.vn[k] = hi;
         ws.vlo[k] = lo;

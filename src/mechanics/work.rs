@@ -88,6 +88,10 @@ pub(crate) struct Work {
     pub vlo: Vec<f64>,
     /// `a = (q − qₙ) − h vₙ` of the last evaluation (12 per body).
     pub acc: Vec<f64>,
+    /// `h vₙ` of the stage, rounded (12 per body; `stage_rates`).
+    pub hv: Vec<f64>,
+    /// The rest of `h (vₙ + v_lo)`: the rounding error of `hv` plus `h v_lo`.
+    pub hv_lo: Vec<f64>,
     /// Multiplier memory `λ/2` per active row (warm start `μ = h² λ/2`).
     pub lam: Vec<f64>,
     /// Unwrapped turn angles at the stage start, rad.
@@ -157,6 +161,8 @@ impl Work {
             vn: model.v0.clone(),
             vlo: vec![0.0; 12 * nb],
             acc: vec![0.0; 12 * nb],
+            hv: vec![0.0; 12 * nb],
+            hv_lo: vec![0.0; 12 * nb],
             lam: vec![0.0; nr],
             ang: model.angles0.clone(),
             work: 0.0,

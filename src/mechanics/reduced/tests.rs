@@ -30,6 +30,7 @@ fn predicted(def: &ModelDef, h: f64, scale: f64) -> (Model, Work, RedWork) {
     let mut ws = Work::new(&model);
     ws.qn.copy_from_slice(&model.q0);
     ws.vn.copy_from_slice(&model.v0);
+    crate::mechanics::newton::stage_rates(&mut ws, h);
     // each body shifted and turned rigidly (as the predictor does): its rates times h, plus
     // `scale` times a fixed pattern
     let wave = |k: usize| scale * (0.7 * k as f64).sin();
