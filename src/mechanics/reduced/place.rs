@@ -249,15 +249,16 @@ fn target(model: &Model, rw: &mut RedWork, b: usize) -> (Mat3, Vec3) {
                 ep.tr_mul(&(a + x)) + x
             };
             let (t1, t2) = (t(&a1), t(&a2));
-            let sn = a2.dot(&t1) - a1.dot(&t2);
-            let cs = 2.0 + a1.dot(&t1) + a2.dot(&t2);
-            // |(sn, cs)| ≈ 2 (no overflow to guard against)
-            let n = (sn * sn + cs * cs).sqrt();
-            let (sn, cs) = (sn / n, cs / n);
-            let cm1 = if cs > 0.0 {
-                -sn * sn / (1.0 + cs)
+            let s2 = a2.dot(&t1) - a1.dot(&t2);
+            let c2 = 2.0 + a1.dot(&t1) + a2.dot(&t2);
+            // |(s2, c2)| ≈ 2 (no overflow to guard against)
+            let n = (s2 * s2 + c2 * c2).sqrt();
+            let (sn, cm1) = if c2 > 0.0 {
+                // sin ϑ = s2/n, cos ϑ − 1 = −s2²/(n (n + c2)): one division
+                let q = 1.0 / (n * (n + c2));
+                (s2 * (n + c2) * q, -s2 * s2 * q)
             } else {
-                cs - 1.0
+                (s2 / n, c2 / n - 1.0)
             };
             let x = s.skew3 * sn + s.plane3 * cm1;
             ep + x + ep * x
