@@ -38,6 +38,11 @@ fn right_a(x: &M6, m: &Map) -> M6 {
     out
 }
 
+#[inline]
+fn dot6(a: &V6, b: &V6) -> f64 {
+    a[0] * b[0] + a[1] * b[1] + a[2] * b[2] + a[3] * b[3] + a[4] * b[4] + a[5] * b[5]
+}
+
 /// Row `x` times `A` (`[x_f, e × x_f + Z x_m]`, as a row of [`right_a`]).
 fn right_a_row(x: &V6, m: &Map) -> V6 {
     let xf = Vec3::new(x[0], x[1], x[2]);
@@ -97,16 +102,20 @@ pub(crate) fn factor(model: &Model, rw: &mut RedWork) -> bool {
         let (m, mb) = (&rw.fq[b], &rw.fp[b]);
         let k = &rw.kd[b];
         let f = m.f();
+        // the columns of S and S̄
+        let mut sq = [[0.0; 6]; 6];
+        let mut sp = [[0.0; 6]; 6];
+        for c in 0..f {
+            sq[c] = m.s_col(c);
+            sp[c] = mb.s_col(c);
+        }
         // D = S̄ᵀ K S + X_c S
         let d = &mut rw.dinv[b];
         let xc = &rw.xc[b];
         for c in 0..f {
-            let sc = m.s_col(c);
-            let ks = mul_vec(k, &sc);
-            let mut col = [0.0; 6];
-            mb.st_mul(&ks, &mut col);
+            let ks = mul_vec(k, &sq[c]);
             for r in 0..f {
-                d[r][c] = col[r] + (0..6).map(|i| xc[r][i] * sc[i]).sum::<f64>();
+                d[r][c] = dot6(&sp[r], &ks) + dot6(&xc[r], &sq[c]);
             }
         }
         if !invert(d, f) {
@@ -125,18 +134,16 @@ pub(crate) fn factor(model: &Model, rw: &mut RedWork) -> bool {
         // G = S̄ᵀ (K A + K_cp) + X_c A + X_p (f × 6; the geometric stiffness of the joint
         // equations), Y = D⁻¹ G
         let mut g = [[0.0; 6]; 6];
-        for c in 0..6 {
-            let col: V6 = std::array::from_fn(|i| ka[i][c]);
-            let mut t = [0.0; 6];
-            mb.st_mul(&col, &mut t);
-            for r in 0..f {
-                g[r][c] = t[r];
-            }
-        }
         for r in 0..f {
             let xa = right_a_row(&xc[r], m);
             for c in 0..6 {
-                g[r][c] += xa[c] + rw.xp[b][r][c];
+                g[r][c] = xa[c] + rw.xp[b][r][c];
+            }
+            for i in 0..6 {
+                let s = sp[r][i];
+                for c in 0..6 {
+                    g[r][c] += s * ka[i][c];
+                }
             }
         }
         let y = &mut rw.y[b];
@@ -167,7 +174,7 @@ pub(crate) fn factor(model: &Model, rw: &mut RedWork) -> bool {
         // K_p += H A − (H S) Y + Āᵀ K_cp
         let mut upd = right_a(hm, m);
         for c in 0..f {
-            let hs = mul_vec(hm, &m.s_col(c));
+            let hs = mul_vec(hm, &sq[c]);
             for i in 0..6 {
                 for j in 0..6 {
                     upd[i][j] -= hs[i] * y[c][j];
