@@ -157,16 +157,34 @@ pub(crate) fn evaluate(model: &Model, ws: &mut Work, held: &Held, h: f64, mode: 
 }
 
 /// Sets `ws.hv`, `ws.hv_lo` for a stage of size `h` from its start velocities: `h vₙ` rounded,
-/// and the rest of `h (vₙ + v_lo)` (the product's rounding error, exact by a fused
-/// multiply-add, plus `h v_lo`). An evaluation's `a = Δq − h vₙ` is then `(Δq − hv) − hv_lo`:
-/// `Δq − hv` is exact while `Δq` is within a factor 2 of `h vₙ` (Sterbenz), so `a` carries
-/// about one rounding of its own size, as one fused multiply-add per evaluation would.
+/// and the rest of `h (vₙ + v_lo)` (the product's rounding error, exact by [`product_error`],
+/// plus `h v_lo`). An evaluation's `a = Δq − h vₙ` is then `(Δq − hv) − hv_lo`: `Δq − hv` is
+/// exact while `Δq` is within a factor 2 of `h vₙ` (Sterbenz), so `a` carries about one
+/// rounding of its own size, as one fused multiply-add per evaluation would.
 pub(crate) fn stage_rates(ws: &mut Work, h: f64) {
+    let hs = split(h);
     for k in 0..ws.hv.len() {
-        let p = h * ws.vn[k];
+        let v = ws.vn[k];
+        let p = h * v;
         ws.hv[k] = p;
-        ws.hv_lo[k] = h.mul_add(ws.vn[k], -p) + h * ws.vlo[k];
+        ws.hv_lo[k] = product_error(hs, split(v), p) + h * ws.vlo[k];
     }
+}
+
+/// Veltkamp's split `a = hi + lo` into halves of 26 significant bits (exact).
+#[inline]
+fn split(a: f64) -> (f64, f64) {
+    let t = 134_217_729.0 * a; // 2²⁷ + 1
+    let hi = t - (t - a);
+    (hi, a - hi)
+}
+
+/// Dekker's exact rounding error `a b − p` of the product `p = fl(a b)` from the splits of `a`
+/// and `b` (the value a fused multiply-add `a·b − p` gives, without the library call the
+/// baseline x86-64 target makes of it).
+#[inline]
+fn product_error(a: (f64, f64), b: (f64, f64), p: f64) -> f64 {
+    ((a.0 * b.0 - p) + a.0 * b.1 + a.1 * b.0) + a.1 * b.1
 }
 
 /// The inertia and gravity terms of every body's node residual `ws.rn` (and `ws.acc`; in a
