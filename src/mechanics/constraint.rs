@@ -112,9 +112,22 @@ impl LinVec {
     /// Value for the nodes of A (ignored when `a` is zero) and B.
     #[must_use]
     pub fn eval(&self, qa: &Nodes, qb: &Nodes) -> Vec3 {
+        // most vectors are fixed in one body (axes, points): the other half is skipped (the
+        // same value: its terms are exact zeros)
         let mut v = self.c;
-        for k in 0..NODES {
-            v += qa[k] * self.a[k] + qb[k] * self.b[k];
+        let zero = [0.0; NODES];
+        if self.b == zero {
+            for k in 0..NODES {
+                v += qa[k] * self.a[k];
+            }
+        } else if self.a == zero {
+            for k in 0..NODES {
+                v += qb[k] * self.b[k];
+            }
+        } else {
+            for k in 0..NODES {
+                v += qa[k] * self.a[k] + qb[k] * self.b[k];
+            }
         }
         v
     }
