@@ -72,13 +72,13 @@ impl Map {
     }
 
     /// Number of rates `f = fr + ft`.
-    #[inline]
+    #[inline(always)]
     pub fn f(&self) -> usize {
         self.fr + self.ft
     }
 
     /// Column `k` of `S`.
-    #[inline]
+    #[inline(always)]
     pub fn s_col(&self, k: usize) -> V6 {
         if k < self.fr {
             join(&self.rho.cross(&self.n[k]), &self.n[k])
@@ -89,7 +89,7 @@ impl Map {
 
     /// `Sᵀ w` into `out[..f]`: the moment about the joint point along each axis, the force
     /// along each slide.
-    #[inline]
+    #[inline(always)]
     pub fn st_mul(&self, w: &V6, out: &mut [f64; 6]) {
         let (f, m) = split(w);
         let mj = m + f.cross(&self.rho);
@@ -102,7 +102,7 @@ impl Map {
     }
 
     /// `S u`.
-    #[inline]
+    #[inline(always)]
     pub fn s_mul(&self, u: &[f64; 6]) -> V6 {
         let mut w = Vec3::zeros();
         let mut v = Vec3::zeros();
@@ -116,7 +116,7 @@ impl Map {
     }
 
     /// `A x` (parent twist to the child's, joint rates zero).
-    #[inline]
+    #[inline(always)]
     pub fn a_mul(&self, x: &V6) -> V6 {
         let (v, w) = split(x);
         join(
@@ -126,7 +126,7 @@ impl Map {
     }
 
     /// `Aᵀ w` (child wrench about its centre of mass to the parent's).
-    #[inline]
+    #[inline(always)]
     pub fn at_mul(&self, w: &V6) -> V6 {
         let (f, m) = split(w);
         let mm = self.e.cross(&f) + if self.z { m } else { Vec3::zeros() };

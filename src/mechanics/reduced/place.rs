@@ -266,17 +266,23 @@ fn target(model: &Model, rw: &mut RedWork, b: usize) -> (Mat3, Vec3) {
         T::Spherical => eb,
         _ => ep,
     };
-    let dr = rw.dphi[b] + eb * s.rho_b - dp - ep * s.rho_a - ep * s.r;
-    let along = |k: usize| {
-        let a = s.a[k] + ep * s.a[k];
-        a * dr.dot(&a)
+    let ep_rho_a = ep * s.rho_a;
+    // the slides along the free axes (the slide pairs only)
+    let slid = |ks: &[usize]| {
+        let dr = rw.dphi[b] + eb * s.rho_b - dp - ep_rho_a - ep * s.r;
+        let mut out = ep * s.r;
+        for &k in ks {
+            let a = s.a[k] + ep * s.a[k];
+            out += a * dr.dot(&a);
+        }
+        out
     };
     let slid = match kind {
-        T::Prismatic | T::Cylindrical => ep * s.r + along(2),
-        T::Planar => ep * s.r + along(0) + along(1),
+        T::Prismatic | T::Cylindrical => slid(&[2]),
+        T::Planar => slid(&[0, 1]),
         _ => Vec3::zeros(),
     };
-    (e, dp + ep * s.rho_a + slid - e * s.rho_b)
+    (e, dp + ep_rho_a + slid - e * s.rho_b)
 }
 
 /// Scaled size of the body updates of the last solve (`rw.dx`): `max_b |δφ_b|/lc, |δθ_b|`.
