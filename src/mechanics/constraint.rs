@@ -117,12 +117,12 @@ impl LinVec {
         let mut v = self.c;
         let zero = [0.0; NODES];
         if self.b == zero {
-            for k in 0..NODES {
-                v += qa[k] * self.a[k];
+            for (x, c) in qa.iter().zip(&self.a) {
+                v += x * *c;
             }
         } else if self.a == zero {
-            for k in 0..NODES {
-                v += qb[k] * self.b[k];
+            for (x, c) in qb.iter().zip(&self.b) {
+                v += x * *c;
             }
         } else {
             for k in 0..NODES {

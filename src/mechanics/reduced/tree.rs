@@ -24,26 +24,12 @@ use crate::math::Vec3;
 
 type M6 = [[f64; 6]; 6];
 
-/// `X A` for the map's `A = [I −ê; 0 Z]` (row `i`: `[x_f, e × x_f + Z x_m]`).
-fn right_a(x: &M6, m: &Map) -> M6 {
-    let mut out = *x;
-    for i in 0..6 {
-        let xf = Vec3::new(x[i][0], x[i][1], x[i][2]);
-        let mut r = m.e.cross(&xf);
-        if m.z {
-            r += Vec3::new(x[i][3], x[i][4], x[i][5]);
-        }
-        out[i][3..6].copy_from_slice(r.as_slice());
-    }
-    out
-}
-
 #[inline]
 fn dot6(a: &V6, b: &V6) -> f64 {
     a[0] * b[0] + a[1] * b[1] + a[2] * b[2] + a[3] * b[3] + a[4] * b[4] + a[5] * b[5]
 }
 
-/// Row `x` times `A` (`[x_f, e × x_f + Z x_m]`, as a row of [`right_a`]).
+/// Row `x` times the map's `A = [I −ê; 0 Z]`: `[x_f, e × x_f + Z x_m]`.
 fn right_a_row(x: &V6, m: &Map) -> V6 {
     let xf = Vec3::new(x[0], x[1], x[2]);
     let mut r = m.e.cross(&xf);
@@ -123,27 +109,28 @@ pub(crate) fn factor(model: &Model, rw: &mut RedWork) -> bool {
         }
         let Some(p) = model.parent[b] else { continue };
         let coupled = rw.coupled[b];
-        let mut ka = right_a(k, m);
-        if coupled {
-            for i in 0..6 {
-                for j in 0..6 {
-                    ka[i][j] += rw.kcp[b][i][j];
-                }
-            }
-        }
         // G = S̄ᵀ (K A + K_cp) + X_c A + X_p (f × 6; the geometric stiffness of the joint
-        // equations), Y = D⁻¹ G
+        // equations), row r = (s̄_rᵀ K + X_c,r) A + s̄_rᵀ K_cp + X_p,r, Y = D⁻¹ G
         let mut g = [[0.0; 6]; 6];
         for r in 0..f {
-            let xa = right_a_row(&xc[r], m);
-            for c in 0..6 {
-                g[r][c] = xa[c] + rw.xp[b][r][c];
-            }
+            let mut w = xc[r];
             for i in 0..6 {
                 let s = sp[r][i];
                 for c in 0..6 {
-                    g[r][c] += s * ka[i][c];
+                    w[c] += s * k[i][c];
                 }
+            }
+            g[r] = right_a_row(&w, m);
+            if coupled {
+                for i in 0..6 {
+                    let s = sp[r][i];
+                    for c in 0..6 {
+                        g[r][c] += s * rw.kcp[b][i][c];
+                    }
+                }
+            }
+            for c in 0..6 {
+                g[r][c] += rw.xp[b][r][c];
             }
         }
         let y = &mut rw.y[b];
@@ -171,27 +158,32 @@ pub(crate) fn factor(model: &Model, rw: &mut RedWork) -> bool {
                 hm[3 + i][3 + j] += rw.gpc[b][i][j];
             }
         }
-        // K_p += H A − (H S) Y + Āᵀ K_cp
-        let mut upd = right_a(hm, m);
+        // K_p += H A − (H S) Y + Āᵀ K_cp, row by row
+        let mut hs = [[0.0; 6]; 6];
         for c in 0..f {
-            let hs = mul_vec(hm, &sq[c]);
-            for i in 0..6 {
-                for j in 0..6 {
-                    upd[i][j] -= hs[i] * y[c][j];
-                }
-            }
+            hs[c] = mul_vec(hm, &sq[c]);
         }
-        if coupled {
-            let t = left_at(mb, &rw.kcp[b]);
-            for i in 0..6 {
-                for j in 0..6 {
-                    upd[i][j] += t[i][j];
-                }
-            }
-        }
+        let kt = if coupled {
+            Some(left_at(mb, &rw.kcp[b]))
+        } else {
+            None
+        };
+        let kp = &mut rw.kd[p];
         for i in 0..6 {
+            let mut row = right_a_row(&hm[i], m);
+            for c in 0..f {
+                let s = hs[c][i];
+                for j in 0..6 {
+                    row[j] -= s * y[c][j];
+                }
+            }
+            if let Some(t) = &kt {
+                for j in 0..6 {
+                    row[j] += t[i][j];
+                }
+            }
             for j in 0..6 {
-                rw.kd[p][i][j] += upd[i][j];
+                kp[i][j] += row[j];
             }
         }
     }
