@@ -111,6 +111,7 @@ impl LinVec {
 
     /// Value for the nodes of A (ignored when `a` is zero) and B.
     #[must_use]
+    #[inline]
     pub fn eval(&self, qa: &Nodes, qb: &Nodes) -> Vec3 {
         // most vectors are fixed in one body (axes, points): the other half is skipped (the
         // same value: its terms are exact zeros)
@@ -172,6 +173,7 @@ impl DotRow {
 
     /// Value `g(q)`.
     #[must_use]
+    #[inline]
     pub fn eval(&self, qa: &Nodes, qb: &Nodes) -> f64 {
         self.u.eval(qa, qb).dot(&self.w.eval(qa, qb)) - self.offset
     }
