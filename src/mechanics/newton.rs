@@ -163,11 +163,11 @@ pub(crate) fn evaluate(model: &Model, ws: &mut Work, held: &Held, h: f64, mode: 
 /// rounding of its own size, as one fused multiply-add per evaluation would.
 pub(crate) fn stage_rates(ws: &mut Work, h: f64) {
     let hs = split(h);
-    for k in 0..ws.hv.len() {
-        let v = ws.vn[k];
+    let rates = ws.vn.iter().zip(&ws.vlo);
+    for ((hv, hv_lo), (&v, &vlo)) in ws.hv.iter_mut().zip(ws.hv_lo.iter_mut()).zip(rates) {
         let p = h * v;
-        ws.hv[k] = p;
-        ws.hv_lo[k] = product_error(hs, split(v), p) + h * ws.vlo[k];
+        *hv = p;
+        *hv_lo = product_error(hs, split(v), p) + h * vlo;
     }
 }
 
@@ -198,8 +198,10 @@ pub(crate) fn inertia_and_forces(model: &Model, ws: &mut Work, held: &Held, h: f
     for b in 0..nb {
         let br = &model.bodies[b];
         // a = Δq − h vₙ − h v_lo (see `stage_rates`)
-        for k in 12 * b..12 * b + 12 {
-            ws.acc[k] = (ws.dq[k] - ws.hv[k]) - ws.hv_lo[k];
+        let at = 12 * b..12 * b + 12;
+        let parts = ws.dq[at.clone()].iter().zip(&ws.hv[at.clone()]);
+        for ((a, (dq, hv)), lo) in ws.acc[at.clone()].iter_mut().zip(parts).zip(&ws.hv_lo[at]) {
+            *a = (dq - hv) - lo;
         }
         let dq = body_nodes(&ws.acc, b);
         let mut r = [Vec3::zeros(); 4];

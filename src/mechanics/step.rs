@@ -218,13 +218,11 @@ fn stage(
     }
     // v_{n+1} = vₙ + 2a/h in double-double (two-sum), a from the final evaluation
     let two_over_h = 2.0 / h;
-    for k in 0..ws.q.len() {
-        let c = ws.vlo[k] + ws.acc[k] * two_over_h;
-        let (hi, lo) = two_sum(ws.vn[k], c);
-        ws.vn[k] = hi;
-        ws.vlo[k] = lo;
-        ws.qn[k] = ws.q[k];
+    for ((vn, vlo), acc) in ws.vn.iter_mut().zip(ws.vlo.iter_mut()).zip(&ws.acc) {
+        let c = *vlo + acc * two_over_h;
+        (*vn, *vlo) = two_sum(*vn, c);
     }
+    ws.qn.copy_from_slice(&ws.q);
     let ih2 = 1.0 / (h * h);
     for k in 0..ws.mu.len() {
         ws.lam[k] = ws.mu[k] * ih2;
