@@ -143,8 +143,8 @@ pub(crate) struct Work {
 impl Work {
     /// Sets the midpoint `q̄ = qₙ + ½ Δq` of the iterate.
     pub fn set_midpoint(&mut self) {
-        for k in 0..self.q.len() {
-            self.qbar[k] = self.qn[k] + 0.5 * self.dq[k];
+        for (qbar, (qn, dq)) in self.qbar.iter_mut().zip(self.qn.iter().zip(&self.dq)) {
+            *qbar = qn + 0.5 * dq;
         }
     }
 

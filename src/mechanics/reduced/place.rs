@@ -185,14 +185,16 @@ fn placed(model: &Model, rw: &RedWork, b: usize) -> (Mat3, Vec3) {
 
 /// Writes body `b`'s increments (`R − I`, `Δφ`) to `ws.dq` and `ws.q`.
 fn write_body(ws: &mut Work, b: usize, e: &Mat3, dphi: &Vec3) {
-    let o = 12 * b;
-    write3(&mut ws.dq, o, dphi);
-    write3(&mut ws.q, o, &(read3(&ws.qn, o) + dphi));
+    let at = 12 * b..12 * b + 12;
+    let (qn, q, dq) = (&ws.qn[at.clone()], &mut ws.q[at.clone()], &mut ws.dq[at]);
+    write3(dq, 0, dphi);
+    write3(q, 0, &(read3(qn, 0) + dphi));
     for i in 0..3 {
-        let at = o + 3 + 3 * i;
-        let inc = e * read3(&ws.qn, at);
-        write3(&mut ws.dq, at, &inc);
-        write3(&mut ws.q, at, &(read3(&ws.qn, at) + inc));
+        let at = 3 + 3 * i;
+        let n = read3(qn, at);
+        let inc = e * n;
+        write3(dq, at, &inc);
+        write3(q, at, &(n + inc));
     }
 }
 
