@@ -56,9 +56,9 @@ use maps::{Map, V6};
 pub(crate) struct JointStart {
     /// Parent joint-frame axes `a₁, a₂, a₃` (world frame).
     pub a: [Vec3; 3],
-    /// Child axis `b₂` (world frame; universal joints).
+    /// Child axis `b₂` (world frame; universal joints, else zero).
     pub b2: Vec3,
-    /// `r = p_B − p_A` (m).
+    /// `r = p_B − p_A` (m; the slide pairs, else zero).
     pub r: Vec3,
     /// Joint point from the parent's centre of mass (m; zero for the world).
     pub rho_a: Vec3,

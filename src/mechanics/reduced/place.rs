@@ -94,10 +94,19 @@ pub(crate) fn prepare(model: &Model, rw: &mut RedWork, ws: &mut Work) {
         let qb = body_nodes(&ws.qn, b);
         let (rho_a, rho_b) = levers(g, &qa, &qb);
         let a: [Vec3; 3] = std::array::from_fn(|k| g.a[k].eval(&qa, &qb));
+        // b₂ serves the universal pair only, r the slide pairs only
+        let b2 = match g.kind {
+            T::Universal => g.b[1].eval(&qa, &qb),
+            _ => Vec3::zeros(),
+        };
+        let r = match g.kind {
+            T::Cylindrical | T::Prismatic | T::Planar => g.r.eval(&qa, &qb),
+            _ => Vec3::zeros(),
+        };
         rw.start[b] = JointStart {
             a,
-            b2: g.b[1].eval(&qa, &qb),
-            r: g.r.eval(&qa, &qb),
+            b2,
+            r,
             rho_a,
             rho_b,
             skew3: a[1] * a[0].transpose() - a[0] * a[1].transpose(),
