@@ -34,12 +34,7 @@ pub(crate) fn finish(model: &Model, ws: &mut Work, held: &Held, h: f64) -> f64 {
     let nb = model.bodies.len();
     ws.set_midpoint();
     for b in 0..nb {
-        // a = Δq − h vₙ − h v_lo (see `newton::stage_rates`)
-        let at = 12 * b..12 * b + 12;
-        let parts = ws.dq[at.clone()].iter().zip(&ws.hv[at.clone()]);
-        for ((a, (dq, hv)), lo) in ws.acc[at.clone()].iter_mut().zip(parts).zip(&ws.hv_lo[at]) {
-            *a = (dq - hv) - lo;
-        }
+        ws.set_acc(b);
         let th = rotation_increment(&body_nodes(&ws.qn, b), &body_nodes(&ws.q, b));
         for k in 0..3 {
             ws.theta[3 * b + k] = th[k];

@@ -197,12 +197,7 @@ pub(crate) fn inertia_and_forces(model: &Model, ws: &mut Work, held: &Held, h: f
     // body inertia and applied forces, node form
     for b in 0..nb {
         let br = &model.bodies[b];
-        // a = Δq − h vₙ − h v_lo (see `stage_rates`)
-        let at = 12 * b..12 * b + 12;
-        let parts = ws.dq[at.clone()].iter().zip(&ws.hv[at.clone()]);
-        for ((a, (dq, hv)), lo) in ws.acc[at.clone()].iter_mut().zip(parts).zip(&ws.hv_lo[at]) {
-            *a = (dq - hv) - lo;
-        }
+        ws.set_acc(b);
         let dq = body_nodes(&ws.acc, b);
         let mut r = [Vec3::zeros(); 4];
         r[0] = dq[0] * br.mass - g * (hh * br.mass);

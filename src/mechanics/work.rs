@@ -148,6 +148,21 @@ impl Work {
         }
     }
 
+    /// Sets body `b`'s `a = Δq − h vₙ − h v_lo` (12) from the iterate's increments and the
+    /// stage's `hv`, `hv_lo` (`newton::stage_rates`).
+    #[inline]
+    pub fn set_acc(&mut self, b: usize) {
+        let at = 12 * b..12 * b + 12;
+        let parts = self.dq[at.clone()].iter().zip(&self.hv[at.clone()]);
+        for ((a, (dq, hv)), lo) in self.acc[at.clone()]
+            .iter_mut()
+            .zip(parts)
+            .zip(&self.hv_lo[at])
+        {
+            *a = (dq - hv) - lo;
+        }
+    }
+
     /// Workspace for `model`.
     pub fn new(model: &Model) -> Self {
         let nb = model.bodies.len();

@@ -112,14 +112,20 @@ pub(crate) fn evaluate(
     res
 }
 
-/// `v × w` as the rows of `c ⊗ (·)`: adds `s ((f·v) I − v fᵀ)` to the 3 × 3 block at
-/// `(r0, c0)` of `k` (the derivative of `f × (δθ × v)` with respect to `δθ`, times `s`).
-fn add_turn(k: &mut [[f64; 6]; 6], r0: usize, c0: usize, s: f64, f: &Vec3, v: &Vec3) {
+/// `s ((f·v) I − v fᵀ)`: the derivative of `f × (δθ × v)` with respect to `δθ`, times `s`.
+fn turn_block(s: f64, f: &Vec3, v: &Vec3) -> [[f64; 3]; 3] {
     let fv = f.dot(v);
+    std::array::from_fn(|i| {
+        std::array::from_fn(|j| if i == j { s * fv } else { 0.0 } - s * v[i] * f[j])
+    })
+}
+
+/// Adds [`turn_block`] to the 3 × 3 block at `(r0, c0)` of `k`.
+fn add_turn(k: &mut [[f64; 6]; 6], r0: usize, c0: usize, s: f64, f: &Vec3, v: &Vec3) {
+    let t = turn_block(s, f, v);
     for i in 0..3 {
-        k[r0 + i][c0 + i] += s * fv;
         for j in 0..3 {
-            k[r0 + i][c0 + j] -= s * v[i] * f[j];
+            k[r0 + i][c0 + j] += t[i][j];
         }
     }
 }
@@ -177,12 +183,12 @@ fn geometric_stiffness(model: &Model, rw: &mut RedWork, b: usize, pm: &Map, qm: 
     if let Some(p) = model.parent[b] {
         let ea = qm.e + if qm.z { qm.rho } else { Vec3::zeros() };
         add_turn(&mut rw.kd[p], 3, 3, -0.5, &f, &ea);
-        // ½ ((f·ρ) I − ρ fᵀ), as `add_turn` (turn columns of the child)
-        let s = if qm.z { 0.5 } else { 0.0 };
-        let fr = f.dot(&qm.rho);
-        rw.gpc[b] = std::array::from_fn(|i| {
-            std::array::from_fn(|j| s * (if i == j { fr } else { 0.0 } - qm.rho[i] * f[j]))
-        });
+        // the child's turn columns (none for a spherical child)
+        rw.gpc[b] = if qm.z {
+            turn_block(0.5, &f, &qm.rho)
+        } else {
+            [[0.0; 3]; 3]
+        };
     }
 }
 

@@ -64,7 +64,8 @@ pub(crate) struct JointStart {
     pub rho_a: Vec3,
     /// Joint point from the child's centre of mass (m).
     pub rho_b: Vec3,
-    /// `a₂a₁ᵀ − a₁a₂ᵀ`: the turn about `a₃` is `I + sin ϑ ·skew3 + (cos ϑ − 1)·plane3`.
+    /// `a₂a₁ᵀ − a₁a₂ᵀ`: the turn about `a₃` is `I + sin ϑ ·skew3 + (cos ϑ − 1)·plane3`
+    /// (revolute, cylindrical, planar pairs; else zero).
     pub skew3: Mat3,
     /// `a₁a₁ᵀ + a₂a₂ᵀ` (see `skew3`).
     pub plane3: Mat3,

@@ -103,14 +103,22 @@ pub(crate) fn prepare(model: &Model, rw: &mut RedWork, ws: &mut Work) {
             T::Cylindrical | T::Prismatic | T::Planar => g.r.eval(&qa, &qb),
             _ => Vec3::zeros(),
         };
+        // the turn about a₃ (the pairs that have one)
+        let (skew3, plane3) = match g.kind {
+            T::Revolute | T::Cylindrical | T::Planar => (
+                a[1] * a[0].transpose() - a[0] * a[1].transpose(),
+                a[0] * a[0].transpose() + a[1] * a[1].transpose(),
+            ),
+            _ => (Mat3::zeros(), Mat3::zeros()),
+        };
         rw.start[b] = JointStart {
             a,
             b2,
             r,
             rho_a,
             rho_b,
-            skew3: a[1] * a[0].transpose() - a[0] * a[1].transpose(),
-            plane3: a[0] * a[0].transpose() + a[1] * a[1].transpose(),
+            skew3,
+            plane3,
         };
     }
 }
@@ -126,7 +134,7 @@ fn read_off(model: &Model, rw: &mut RedWork, b: usize) {
         rw.u[b][3..6].copy_from_slice(d.as_slice());
         return;
     };
-    let s = rw.start[b];
+    let s = &rw.start[b];
     let (ep, dp) =
         model.parent[b].map_or((Mat3::zeros(), Vec3::zeros()), |p| (rw.e[p], rw.dphi[p]));
     let turn = (Mat3::identity() + ep).transpose() * (Mat3::identity() + eb);
@@ -280,8 +288,9 @@ fn target(model: &Model, rw: &mut RedWork, b: usize) -> (Mat3, Vec3) {
     let ep_rho_a = ep * s.rho_a;
     // the slides along the free axes (the slide pairs only)
     let slid = |ks: &[usize]| {
-        let dr = rw.dphi[b] + eb * s.rho_b - dp - ep_rho_a - ep * s.r;
-        let mut out = ep * s.r;
+        let ep_r = ep * s.r;
+        let dr = rw.dphi[b] + eb * s.rho_b - dp - ep_rho_a - ep_r;
+        let mut out = ep_r;
         for &k in ks {
             let a = s.a[k] + ep * s.a[k];
             out += a * dr.dot(&a);
