@@ -7,48 +7,37 @@
 //! `q[12b..12b+12]`; `v` likewise. The mass matrix `diag(m I, E ⊗ I)` with the Euler tensor
 //! `E = ½ tr(J) I − J` is constant.
 //!
+//! Layers, lowest first; each uses only the ones below it (checked by `tests/import_cycles.rs`):
+//!
+//! | layer | holds |
+//! |---|---|
+//! | `linalg` | fixed-size blocks, dense LU, the tree block factorisation, the bordered solve |
+//! | `model` | definitions, bodies, joints and their rows, kinematics, loops, the runtime `Model`, the velocity projection |
+//! | `step` | residual and Jacobian, loads, turn coordinates, predictor, Newton (both forms), finish, the order-4 composition |
+//! | `run` | the `State`, the outputs, `step` / `step_state` |
+//!
+//! This file only names the public API.
+//!
 //! Use: `Model::new(&def, settings)` once (validates, orders the tree, finds redundant loop
 //! constraints, computes the initial state), `State::new(&model)`, then `step(&model, &mut state, h)`
 //! as often as needed; `state.outputs()` holds every output after each step. `step_state` is the
 //! integrator step alone (outputs refreshed on demand by `State::refresh_outputs`), for runs that
 //! read outputs once per communication step.
 
-mod assemble;
-pub mod body;
-mod body_terms;
-mod border;
-pub mod constraint;
-pub mod def;
-mod dense;
-mod error;
-mod finish;
-mod increment;
-pub mod joint;
-mod joint_loads;
-mod kernels;
-pub mod kinematics;
-pub mod loops;
+mod linalg;
 mod model;
-mod newton;
-mod outputs;
-mod predictor;
-mod projection;
-mod reduced;
-mod redundancy;
-mod small_mat;
-mod solver;
-mod sparse_row;
-mod state;
+mod run;
 mod step;
-mod turn;
-mod work;
 
-pub use def::{
+pub use model::def::{
     BodyDef, BodyIndex, BodyLoadDef, Frame, FreeBodyInitial, JointDef, JointInitial, JointType,
     ModelDef, SolverSettings,
 };
-pub use error::{ModelError, StepError};
-pub use model::{InputSlot, Model};
-pub use outputs::{BodyOutput, JointOutput, Outputs};
-pub use state::State;
-pub use step::{gamma1, step, step_state, StepStats};
+pub use model::error::ModelError;
+pub use model::runtime::{InputSlot, Model};
+pub use model::{body, constraint, def, joint, kinematics, loops};
+pub use run::advance::{step, step_state};
+pub use run::outputs::{BodyOutput, JointOutput, Outputs};
+pub use run::state::State;
+pub use step::error::StepError;
+pub use step::stage::{gamma1, StepStats};

@@ -1,0 +1,346 @@
+//! Model set-up ([`Model::new`]): joint rows and coordinate handles (from `joint::JointGeom`), tree order,
+//! redundant-row detection and the initial state (from `kinematics` and `loops`).
+//!
+//! Redundant rows: with loop-closing joints, the reduced constraint Jacobian `G(q₀) P(q₀)` is
+//! tested row by row (tree joints first) by Gram–Schmidt with relative tolerance 1e-9; a row
+//! that depends on the kept ones is dropped from the Newton solve (it still counts in the
+//! constraint residual) and a note names the joint.
+// index loops over coupled fixed-size arrays read closer to the formulas than iterator chains
+#![allow(clippy::needless_range_loop)]
+
+use super::constraint::write3;
+use super::def::{JointType, ModelDef, SolverSettings};
+use super::error::ModelError;
+use super::joint::{Dof, JointGeom};
+use super::runtime::{
+    covers, euler_tensor, exact_jacobian, BodyRt, DofRt, InputSlot, JointRt, Model, TurnRt,
+};
+use super::sparse_row::SparseRow;
+use crate::math::{matrix_to_quat, quat_to_matrix, Vec3};
+
+impl Model {
+    /// Builds the model: validates, orders the spanning tree, assembles constraint rows, drops
+    /// redundant loop rows (reported in [`Model::notes`]) and computes the initial state.
+    ///
+    /// # Errors
+    /// [`ModelError`] for an inconsistent definition or a loop not closed at the start.
+    pub fn new(def: &ModelDef, settings: SolverSettings) -> Result<Self, ModelError> {
+        let mut inputs = Vec::new();
+        let mut joint_input = vec![None; def.joints.len()];
+        for (j, joint) in def.joints.iter().enumerate() {
+            if !joint.actuated {
+                continue;
+            }
+            use super::def::JointType as T;
+            let first = inputs.len();
+            match joint.kind {
+                T::Revolute => inputs.push(InputSlot::JointTorque { joint: j, k: 0 }),
+                T::Prismatic => inputs.push(InputSlot::JointForce { joint: j }),
+                T::Cylindrical => {
+                    inputs.push(InputSlot::JointForce { joint: j });
+                    inputs.push(InputSlot::JointTorque { joint: j, k: 0 });
+                }
+                T::Universal => {
+                    (0..2).for_each(|k| inputs.push(InputSlot::JointTorque { joint: j, k }))
+                }
+                T::Spherical => {
+                    (0..3).for_each(|k| inputs.push(InputSlot::JointTorque { joint: j, k }))
+                }
+                T::Planar | T::Fixed => {}
+            }
+            if inputs.len() > first {
+                joint_input[j] = Some(first);
+            }
+        }
+        let mut body_torques = Vec::new();
+        let mut body_forces = Vec::new();
+        for load in &def.loads {
+            if load.body >= def.bodies.len() {
+                return Err(ModelError::Invalid(format!(
+                    "body load on unknown body {}",
+                    load.body
+                )));
+            }
+            if load.torque {
+                body_torques.push((load.body, inputs.len()));
+                (0..3).for_each(|i| inputs.push(InputSlot::BodyTorque { body: load.body, i }));
+            }
+            if load.force {
+                body_forces.push((load.body, inputs.len()));
+                (0..3).for_each(|i| inputs.push(InputSlot::BodyForce { body: load.body, i }));
+            }
+        }
+        if !(settings.max_step.is_finite() && settings.max_step > 0.0) {
+            return Err(ModelError::Invalid(format!(
+                "max_step must be positive, got {}",
+                settings.max_step
+            )));
+        }
+        if settings.order != 2 && settings.order != 4 {
+            return Err(ModelError::Invalid(format!(
+                "order must be 2 or 4, got {}",
+                settings.order
+            )));
+        }
+        if !(settings.tolerance.is_finite() && settings.tolerance > 0.0)
+            || settings.max_iterations == 0
+        {
+            return Err(ModelError::Invalid(
+                "tolerance must be positive and max_iterations ≥ 1".into(),
+            ));
+        }
+        let mut bodies = Vec::with_capacity(def.bodies.len());
+        for b in &def.bodies {
+            // only J > 0 is needed: the projected iteration matrix carries P̄ᵀ M Q ≈ R J Rᵀ, so an
+            // indefinite Euler tensor (a body violating the triangle inequality, e.g. theory
+            // B1's J = (1, 1, 2.5)) still integrates
+            let e = euler_tensor(&b.inertia);
+            let sym =
+                (b.inertia - b.inertia.transpose()).abs().max() <= 1e-12 * b.inertia.abs().max();
+            let ok = b.mass > 0.0
+                && b.mass.is_finite()
+                && sym
+                && b.inertia
+                    .symmetric_eigenvalues()
+                    .iter()
+                    .all(|&x| x > 0.0 && x.is_finite());
+            if !ok {
+                return Err(ModelError::Invalid(format!(
+                    "body '{}': mass must be positive and the inertia symmetric positive definite",
+                    b.name
+                )));
+            }
+            bodies.push(BodyRt {
+                mass: b.mass,
+                e,
+                com: b.com,
+                fs: 0.0,
+                ms: 1.0 / (e.trace().abs() + 0.5 * e.norm()),
+            });
+        }
+        let lc = bodies
+            .iter()
+            .map(|b| (b.e.trace().abs() / b.mass).sqrt() + b.com.norm())
+            .fold(0.0_f64, f64::max)
+            .max(1e-6);
+        for b in &mut bodies {
+            b.fs = 1.0 / (b.mass * lc);
+        }
+        let mut model = Self {
+            def: def.clone(),
+            settings,
+            inputs,
+            notes: Vec::new(),
+            bodies,
+            joints: Vec::new(),
+            order: Vec::new(),
+            parent: vec![None; def.bodies.len()],
+            tree_joint: vec![None; def.bodies.len()],
+            nrows: 0,
+            nturn: 0,
+            dense: false,
+            reduced: false,
+            exact_reduced: false,
+            lc,
+            q0: vec![0.0; 12 * def.bodies.len()],
+            v0: vec![0.0; 12 * def.bodies.len()],
+            angles0: Vec::new(),
+            body_torques,
+            body_forces,
+            naive_torque: false,
+        };
+        build(&mut model, &joint_input)?;
+        model.reduced = covers(&model);
+        model.exact_reduced = exact_jacobian(&model);
+        Ok(model)
+    }
+}
+
+/// Fills the joint, tree and initial-state parts of `model`.
+pub(crate) fn build(model: &mut Model, joint_input: &[Option<usize>]) -> Result<(), ModelError> {
+    let def = model.def().clone();
+    let nb = def.bodies.len();
+    let tree = super::kinematics::tree_order(&def)?;
+    model.order.clone_from(&tree.order);
+    model.tree_joint.clone_from(&tree.tree_joint);
+    for b in 0..nb {
+        model.parent[b] = tree.tree_joint[b].and_then(|j| def.joints[j].parent);
+    }
+    // initial rates that violate the loop velocity constraints are projected onto them once
+    // the joints are assembled (below)
+    let mut project_rates = false;
+    // initial state: free-body-only models are placed here (this also admits bodies whose
+    // principal moments violate the triangle inequality, theory B1); jointed ones by kinematics
+    if def.joints.is_empty() {
+        free_initial(model)?;
+    } else {
+        let (q0, v0) = super::kinematics::initial_configuration(&def)?;
+        super::loops::check_loops(&def, &q0)?;
+        project_rates = super::loops::loop_velocities_violated(&def, &q0, &v0)?;
+        model.q0 = q0;
+        model.v0 = v0;
+    }
+    // joints
+    let mut geoms = Vec::with_capacity(def.joints.len());
+    for jd in &def.joints {
+        geoms.push(JointGeom::new(jd, &def.bodies)?);
+    }
+    let keep = super::redundancy::redundant_rows(model, &geoms);
+    let mut row0 = 0;
+    let mut turn0 = 0;
+    let mut angles0 = Vec::new();
+    for (j, (jd, g)) in def.joints.iter().zip(geoms).enumerate() {
+        let mut rows = Vec::new();
+        let mut dropped = Vec::new();
+        for (k, row) in g.rows.iter().enumerate() {
+            if keep[j][k] {
+                rows.push(*row);
+            } else {
+                dropped.push(*row);
+            }
+        }
+        if !dropped.is_empty() {
+            model.push_note(format!(
+                "joint '{}': {} of {} constraint rows are redundant and were dropped",
+                jd.name,
+                dropped.len(),
+                g.rows.len()
+            ));
+        }
+        let spherical = jd.kind == JointType::Spherical;
+        let dofs: Vec<DofRt> = if spherical {
+            Vec::new()
+        } else {
+            g.dofs
+                .iter()
+                .enumerate()
+                .map(|(k, d)| match d {
+                    Dof::Slide(r) => Ok(DofRt::Slide(*r)),
+                    Dof::Turn(n) => {
+                        let (sin, cos) = g.angle_rows(k).ok_or_else(|| {
+                            ModelError::Invalid(format!(
+                                "joint '{}': coordinate {k} has no angle invariants",
+                                jd.name
+                            ))
+                        })?;
+                        Ok(DofRt::Turn(TurnRt { axis: *n, sin, cos }))
+                    }
+                })
+                .collect::<Result<_, ModelError>>()?
+        };
+        // unwrapping memory starts from the given initial angle (q = 4.0 stays 4.0)
+        let qa = super::joint::body_nodes(&model.q0, g.parent);
+        let qb = super::joint::body_nodes(&model.q0, Some(g.child));
+        let mut raw = [0.0; 4];
+        g.coords(&qa, &qb, &mut raw[..jd.kind.nq()]);
+        let given = if jd.loop_closing {
+            None
+        } else {
+            super::kinematics::joint_initial(jd).ok().map(|x| x.0)
+        };
+        for (k, d) in dofs.iter().enumerate() {
+            if let DofRt::Turn(_) = d {
+                let a = given.as_ref().map_or(raw[k], |q| unwrap(q[k], raw[k]));
+                angles0.push(a);
+            }
+        }
+        let nturn = dofs.iter().filter(|d| matches!(d, DofRt::Turn(_))).count();
+        let nrow = rows.len();
+        let sparse = rows
+            .iter()
+            .map(|r| SparseRow::new(r, g.parent.is_some()))
+            .collect();
+        model.joints.push(JointRt {
+            parent: g.parent,
+            child: g.child,
+            rows,
+            sparse,
+            dropped,
+            row0,
+            dofs,
+            sph_axes: if spherical { Some(g.a) } else { None },
+            input: joint_input[j],
+            turn0,
+            geom: g,
+        });
+        row0 += nrow;
+        turn0 += nturn;
+    }
+    model.nrows = row0;
+    model.nturn = turn0;
+    model.angles0 = angles0;
+    // loop-closing joints (`tree.loop_joints`) form the border of the tree solve (`border`);
+    // the dense LU is only the test oracle (`Model::set_dense_solver`)
+    for (b, tj) in model.tree_joint.iter().enumerate() {
+        if let Some(j) = tj {
+            if model.joints[*j].rows.len() > 6 {
+                return Err(ModelError::Invalid(format!(
+                    "body {b}: tree joint with more than 6 rows"
+                )));
+            }
+        }
+    }
+    if project_rates {
+        // the M-orthogonal projection onto the admissible velocities (least change in kinetic
+        // energy), by the same O(N) bordered tree solve as the outputs' projection
+        let mut pw = super::projection::ProjWork::new(model);
+        if !super::projection::project_velocities(model, &model.q0, &model.v0, &mut pw) {
+            return Err(ModelError::Invalid(
+                "projection of the initial rates onto the loop constraints failed".into(),
+            ));
+        }
+        model.v0.copy_from_slice(&pw.vp);
+        model.push_note(
+            "initial rates violated the loop velocity constraints and were projected onto them (least change in kinetic energy)"
+                .into(),
+        );
+    }
+    Ok(())
+}
+
+/// Free bodies of a joint-free model: COM and directors from the given pose and twist.
+fn free_initial(model: &mut Model) -> Result<(), ModelError> {
+    let def = model.def().clone();
+    for fb in &def.free_bodies {
+        let ok = [fb.position, fb.velocity, fb.angular_velocity]
+            .iter()
+            .all(|v| v.iter().all(|x| x.is_finite()))
+            && fb.orientation.iter().all(|x| x.is_finite())
+            && (fb.orientation.transpose() * fb.orientation - crate::math::Mat3::identity()).amax()
+                < 1e-9
+            && fb.orientation.determinant() > 0.0;
+        if !ok {
+            return Err(ModelError::Invalid(format!(
+                "body '{}': initial state must be finite with an orthonormal right-handed orientation",
+                def.bodies[fb.body].name
+            )));
+        }
+        let com = model.bodies[fb.body].com;
+        let r = quat_to_matrix(&matrix_to_quat(&fb.orientation));
+        let rc = r * com;
+        let phi = fb.position + rc;
+        let phid = fb.velocity + fb.angular_velocity.cross(&rc);
+        let q = &mut model.q0[12 * fb.body..12 * fb.body + 12];
+        let v = &mut model.v0[12 * fb.body..12 * fb.body + 12];
+        write3(q, 0, &phi);
+        write3(v, 0, &phid);
+        for i in 0..3 {
+            let d: Vec3 = r.column(i).into();
+            write3(q, 3 + 3 * i, &d);
+            write3(v, 3 + 3 * i, &fb.angular_velocity.cross(&d));
+        }
+    }
+    Ok(())
+}
+
+/// The unwrapped angle nearest to `prev` with the same value as `raw` modulo 2π.
+#[must_use]
+pub(crate) fn unwrap(prev: f64, raw: f64) -> f64 {
+    let tau = std::f64::consts::TAU;
+    let d = raw - prev;
+    prev + d - tau * (d / tau).round()
+}
+
+#[cfg(test)]
+#[path = "assemble_tests.rs"]
+mod tests;

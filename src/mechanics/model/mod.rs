@@ -1,0 +1,33 @@
+//! Layer 1, the model: what a multibody system *is*, built once and immutable during a run.
+//!
+//! - the input definition (`def`) and its error (`error`);
+//! - bodies and their mass data (`body`), the coordinate layout and the one constraint
+//!   primitive (`constraint`: nodes `[φ, d1, d2, d3]`, `LinVec`, `DotRow`), rows in sparse form
+//!   (`sparse_row`);
+//! - joints as rows of that primitive (`joint`), the initial configuration (`kinematics`),
+//!   loop closures (`loops`) and redundant loop rows (`redundancy`);
+//! - the runtime [`runtime::Model`] and its set-up (`assemble`);
+//! - the director kernels shared by the step and the projection (`kernels`: reciprocal basis,
+//!   rotation increment, projected blocks), where the model's rows land in the linear system
+//!   (`sink`), and the M-orthogonal projection of velocities onto the admissible ones
+//!   (`projection`; it makes the initial rates consistent and the reported rates exact);
+//! - test models shared by several layers' unit tests (`fixtures`).
+//!
+//! Uses: `linalg` and `crate::math`; never `step` or `run`.
+
+pub(crate) mod assemble;
+pub mod body;
+pub mod constraint;
+pub mod def;
+pub(crate) mod error;
+#[cfg(test)]
+pub(crate) mod fixtures;
+pub mod joint;
+pub(crate) mod kernels;
+pub mod kinematics;
+pub mod loops;
+pub(crate) mod projection;
+pub(crate) mod redundancy;
+pub(crate) mod runtime;
+pub(crate) mod sink;
+pub(crate) mod sparse_row;

@@ -1,0 +1,293 @@
+//! The immutable model: bodies, joint rows, loads, tree order, initial state.
+//!
+//! Built once by [`Model::new`]; everything `step` needs that does not change during a run lives
+//! here (the mass data, the active constraint rows of every joint, the joint coordinates used by
+//! loads, the tree order used by the block elimination, the initial `q0`, `v0`).
+
+use super::constraint::{DotRow, LinVec};
+use super::def::{JointType, ModelDef, SolverSettings};
+use super::joint::JointGeom;
+use super::sparse_row::SparseRow;
+use crate::math::{Mat3, Vec3};
+use crate::mechanics::linalg::border::Border;
+
+/// One scalar input of the model, in the order of `State::inputs`.
+///
+/// Order: for each joint in model order its actuator inputs (revolute `[tau]`, prismatic
+/// `[f]`, cylindrical `[f, tau]`, universal `[tau1, tau2]`, spherical `[tau1, tau2, tau3]` in
+/// the parent joint frame), then for each body load its torque `[x, y, z]` then force `[x, y, z]`
+/// (world frame).
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum InputSlot {
+    /// Actuator torque of a joint, N·m; `k` is 0 for single-torque joints, else the component.
+    JointTorque {
+        /// Joint index.
+        joint: usize,
+        /// Component.
+        k: usize,
+    },
+    /// Actuator force of a prismatic or cylindrical joint, N.
+    JointForce {
+        /// Joint index.
+        joint: usize,
+    },
+    /// World-frame body torque component `i`, N·m.
+    BodyTorque {
+        /// Body index.
+        body: usize,
+        /// Component 0..3.
+        i: usize,
+    },
+    /// World-frame body force component `i` at the centre of mass, N.
+    BodyForce {
+        /// Body index.
+        body: usize,
+        /// Component 0..3.
+        i: usize,
+    },
+}
+
+/// Mass data of one body (body axes, about the centre of mass).
+#[derive(Clone, Debug)]
+pub(crate) struct BodyRt {
+    /// Mass, kg.
+    pub mass: f64,
+    /// Euler tensor `E = ½ tr(J) I − J`, kg·m².
+    pub e: Mat3,
+    /// Centre of mass in the body frame, m.
+    pub com: Vec3,
+    /// Residual scale of the body's force rows `1/(m·lc)` (1/N·s²… per the h²/2 scaling).
+    pub fs: f64,
+    /// Residual scale of the body's moment rows `1/(|tr E| + ½|E|)` (1/(kg·m²)).
+    pub ms: f64,
+}
+
+/// A rotational joint coordinate as the step sees it.
+#[derive(Clone, Copy, Debug)]
+pub(crate) struct TurnRt {
+    /// Rotation axis `n(q)` (world frame, unit at the nodes): actuator torques act as `±τ n̄`.
+    pub axis: LinVec,
+    /// `s` of `t = atan2(s, c)`.
+    pub sin: DotRow,
+    /// `c` of `t = atan2(s, c)`.
+    pub cos: DotRow,
+}
+
+/// A joint coordinate that loads act on.
+// held inline in the joints' preallocated vectors: no box, no indirection in the step
+#[allow(clippy::large_enum_variant)]
+#[derive(Clone, Copy, Debug)]
+pub(crate) enum DofRt {
+    /// Translational invariant `s = row(q)` (m); its midpoint gradient is an exact discrete
+    /// gradient.
+    Slide(DotRow),
+    /// Rotation about the world axis `n(q)` by the angle `atan2(s, c)` (see `turn`).
+    Turn(TurnRt),
+}
+
+/// A joint as the step sees it.
+#[derive(Clone, Debug)]
+pub(crate) struct JointRt {
+    /// Parent body (`None`: world).
+    pub parent: Option<usize>,
+    /// Child body.
+    pub child: usize,
+    /// Rows kept in the Newton solve.
+    pub rows: Vec<DotRow>,
+    /// `rows` compiled to their non-zero nodes (same order), for the Newton evaluation.
+    pub sparse: Vec<SparseRow>,
+    /// Rows dropped as redundant (still reported in the residual).
+    pub dropped: Vec<DotRow>,
+    /// Offset of this joint's first active row in the global multiplier vector.
+    pub row0: usize,
+    /// Coordinates that carry actuators, springs and dampers, in coordinate order.
+    pub dofs: Vec<DofRt>,
+    /// Parent joint-frame axes (world-frame linear vectors) of a spherical joint.
+    pub sph_axes: Option<[LinVec; 3]>,
+    /// Index in the input vector of the first actuator input, if actuated.
+    pub input: Option<usize>,
+    /// Offset of this joint's turn dofs in the unwrapping memory.
+    pub turn0: usize,
+    /// The joint's geometry (coordinates and rates for outputs and unwrapping).
+    pub geom: JointGeom,
+}
+
+/// A built, immutable multibody model.
+#[derive(Clone, Debug)]
+pub struct Model {
+    pub(crate) def: ModelDef,
+    pub(crate) settings: SolverSettings,
+    pub(crate) inputs: Vec<InputSlot>,
+    pub(crate) notes: Vec<String>,
+    pub(crate) bodies: Vec<BodyRt>,
+    pub(crate) joints: Vec<JointRt>,
+    /// Bodies, parents before children.
+    pub(crate) order: Vec<usize>,
+    /// Tree parent of each body.
+    pub(crate) parent: Vec<Option<usize>>,
+    /// Tree joint of each body.
+    pub(crate) tree_joint: Vec<Option<usize>>,
+    /// Number of active joint rows.
+    pub(crate) nrows: usize,
+    /// Number of turn dofs (unwrapping memory length).
+    pub(crate) nturn: usize,
+    /// Use the dense LU over all unknowns (O(N³)) instead of the tree solve (bordered for loops):
+    /// the test oracle only, false as built (see [`Model::set_dense_solver`]).
+    pub(crate) dense: bool,
+    /// Solve trees by the reduced (joint-increment) iteration, `reduced`; true as built for
+    /// models it covers (see [`Model::set_reduced_solver`]).
+    pub(crate) reduced: bool,
+    /// Whether the reduced Newton matrix is the exact Jacobian: no slide pair (prismatic,
+    /// cylindrical, planar), whose geometric stiffness is approximate.
+    pub(crate) exact_reduced: bool,
+    /// Characteristic length for scaled norms, m.
+    pub(crate) lc: f64,
+    /// Initial coordinates (12 per body), world frame.
+    pub(crate) q0: Vec<f64>,
+    /// Initial velocities (12 per body), world frame.
+    pub(crate) v0: Vec<f64>,
+    /// Initial unwrapped turn angles, rad.
+    pub(crate) angles0: Vec<f64>,
+    /// (body, input index) of each body torque load.
+    pub(crate) body_torques: Vec<(usize, usize)>,
+    /// (body, input index) of each body force load.
+    pub(crate) body_forces: Vec<(usize, usize)>,
+    /// Test-only switch: naive torque representation `F_{d_i} = ½ m × d̄_i`.
+    pub(crate) naive_torque: bool,
+}
+
+/// Euler tensor of an inertia tensor: `E = ½ tr(J) I − J`.
+#[must_use]
+pub(crate) fn euler_tensor(j: &Mat3) -> Mat3 {
+    Mat3::identity() * (0.5 * j.trace()) - j
+}
+
+impl Model {
+    /// The definition this model was built from.
+    #[must_use]
+    pub fn def(&self) -> &ModelDef {
+        &self.def
+    }
+
+    /// Solver settings.
+    #[must_use]
+    pub fn settings(&self) -> &SolverSettings {
+        &self.settings
+    }
+
+    /// The scalar inputs, in the order of `State::inputs`.
+    #[must_use]
+    pub fn inputs(&self) -> &[InputSlot] {
+        &self.inputs
+    }
+
+    /// What set-up did that a user should know (redundant loop rows dropped, initial rates
+    /// projected onto the loop velocity constraints).
+    #[must_use]
+    pub fn notes(&self) -> &[String] {
+        &self.notes
+    }
+
+    /// Appends a set-up note.
+    pub(crate) fn push_note(&mut self, note: String) {
+        self.notes.push(note);
+    }
+
+    /// Number of bodies.
+    #[must_use]
+    pub fn body_count(&self) -> usize {
+        self.bodies.len()
+    }
+
+    /// Number of joint constraint rows kept in the Newton solve (after dropping redundant rows).
+    #[must_use]
+    pub fn active_rows(&self) -> usize {
+        self.nrows
+    }
+
+    /// Whether the dense LU test oracle is used instead of the tree elimination (O(N); with
+    /// loop-closing joints bordered, O(N·t + t³) for `t` border unknowns). False as built, for
+    /// trees and loops alike; only [`Model::set_dense_solver`] sets it.
+    #[must_use]
+    pub fn uses_dense_solver(&self) -> bool {
+        self.dense
+    }
+
+    /// Test-only: switches the Newton and projection solves to one dense LU over all unknowns
+    /// (O(N³)), the oracle of the tree and bordered solves. Call before `State::new` (the
+    /// workspaces are sized for the solver). Never use outside tests.
+    #[doc(hidden)]
+    pub fn set_dense_solver(&mut self, dense: bool) {
+        self.dense = dense;
+    }
+
+    /// Whether steps solve the reduced equations in the joint rates (discrete null-space
+    /// method, theory.md §4.5) before the multiplier form: true as built for models without
+    /// loop-closing joints (trees).
+    #[must_use]
+    pub fn uses_reduced_solver(&self) -> bool {
+        self.reduced && !self.dense
+    }
+
+    /// Test-only: `false` solves every stage in the multiplier form (body increments and joint
+    /// multipliers), the oracle of the reduced iteration; `true` solves every tree in the
+    /// reduced form (the default). Never use outside tests.
+    #[doc(hidden)]
+    pub fn set_reduced_solver(&mut self, on: bool) {
+        self.reduced = on && covers(self);
+    }
+
+    /// Test-only: switches body torques to the naive director-force representation
+    /// `F_{d_i} = ½ m × d̄_i`, which violates the discrete angular-momentum balance (theory.md
+    /// §2.3). Never use outside tests.
+    #[doc(hidden)]
+    pub fn set_naive_torque(&mut self, naive: bool) {
+        self.naive_torque = naive;
+    }
+}
+
+impl Model {
+    /// The border of the model's loop-closing joints (those that are not the tree joint of
+    /// their child) for the bordered tree solve; empty for a tree.
+    pub(crate) fn border(&self) -> Border {
+        let tree_rows: Vec<usize> = self
+            .tree_joint
+            .iter()
+            .map(|tj| tj.map_or(0, |j| self.joints[j].rows.len()))
+            .collect();
+        let loops: Vec<_> = self
+            .joints
+            .iter()
+            .enumerate()
+            .map(|(j, jt)| {
+                (self.tree_joint[jt.child] != Some(j)).then_some((
+                    jt.rows.len(),
+                    jt.parent,
+                    jt.child,
+                ))
+            })
+            .collect();
+        Border::new(&tree_rows, &loops)
+    }
+}
+
+/// Whether the reduced iteration (`step::reduced`) covers `model`: a tree (no loop-closing
+/// joint) solved without the dense oracle.
+pub(crate) fn covers(model: &Model) -> bool {
+    model
+        .joints
+        .iter()
+        .enumerate()
+        .all(|(j, jt)| model.tree_joint[jt.child] == Some(j) && jt.dropped.is_empty())
+}
+
+/// Whether the reduced Newton matrix of `model` is the exact Jacobian: no slide pair
+/// (prismatic, cylindrical, planar), whose geometric stiffness is approximate (`step::reduced::eval`).
+pub(crate) fn exact_jacobian(model: &Model) -> bool {
+    model.joints.iter().all(|j| {
+        !matches!(
+            j.geom.kind,
+            JointType::Prismatic | JointType::Cylindrical | JointType::Planar
+        )
+    })
+}

@@ -1,0 +1,79 @@
+//! Advancing a run: one step of the integrator (`step::stage::compose`) taken on a copy of the
+//! state and committed only when every stage converged, then, for [`step`], the outputs
+//! refreshed (`State::refresh_outputs`: the velocity projection and the read-off).
+//!
+//! `qₙ, vₙ, … → q_{n+1}, v_{n+1}, …` with the inputs, damping and stiffness held over the step;
+//! `t ← t + h`. On error the state is exactly as before the call.
+
+use crate::mechanics::model::runtime::Model;
+use crate::mechanics::step::error::StepError;
+use crate::mechanics::step::stage::{compose, StepStats};
+use crate::mechanics::step::work::Held;
+
+use super::state::State;
+
+/// Advances `state` by `h` seconds with the model's order (inputs held constant) and refreshes
+/// its outputs ([`step_state`] followed by [`State::refresh_outputs`]). On error the state is
+/// unchanged. Allocates nothing.
+///
+/// # Errors
+/// [`StepError`] when Newton fails, a value is not finite, or `h` is not positive.
+pub fn step(model: &Model, state: &mut State, h: f64) -> Result<StepStats, StepError> {
+    let stats = step_state(model, state, h)?;
+    state.refresh_outputs(model);
+    Ok(stats)
+}
+
+/// Advances `state` by `h` seconds like [`step`] but leaves the outputs as they were: the
+/// integrator step alone. A run of several sub-steps per communication step calls this for each
+/// and [`State::refresh_outputs`] once at the end (the outputs' velocity projection and energy
+/// cost about a quarter of a step). On error the state is unchanged. Allocates nothing.
+///
+/// # Errors
+/// [`StepError`] when Newton fails, a value is not finite, or `h` is not positive.
+pub fn step_state(model: &Model, state: &mut State, h: f64) -> Result<StepStats, StepError> {
+    if !(h.is_finite() && h > 0.0) {
+        return Err(StepError::BadStep(h));
+    }
+    if state.inputs.iter().any(|x| !x.is_finite()) {
+        return Err(StepError::NonFinite("inputs"));
+    }
+    if state
+        .damping
+        .iter()
+        .chain(state.stiffness.iter())
+        .any(|x| !x.is_finite())
+    {
+        return Err(StepError::NonFinite("damping or stiffness"));
+    }
+    let ws = &mut state.ws;
+    ws.qn.copy_from_slice(&state.q);
+    ws.vn.copy_from_slice(&state.v);
+    ws.vlo.copy_from_slice(&state.v_lo);
+    ws.lam.copy_from_slice(&state.lam);
+    ws.ang.copy_from_slice(&state.angles);
+    ws.work = state.work;
+    ws.hist.copy_from_slice(&state.hist);
+    ws.hprev = state.hprev;
+    ws.memory = state.memory;
+    let held = Held {
+        inputs: &state.inputs,
+        damping: &state.damping,
+        stiffness: &state.stiffness,
+    };
+    let mut stats = StepStats::default();
+    compose(model, ws, &held, h, &mut stats)?;
+    // commit by swapping buffers of equal length (the workspace's copies are overwritten at
+    // the start of the next step)
+    std::mem::swap(&mut state.q, &mut ws.qn);
+    std::mem::swap(&mut state.v, &mut ws.vn);
+    std::mem::swap(&mut state.v_lo, &mut ws.vlo);
+    std::mem::swap(&mut state.lam, &mut ws.lam);
+    std::mem::swap(&mut state.angles, &mut ws.ang);
+    state.work = ws.work;
+    std::mem::swap(&mut state.hist, &mut ws.hist);
+    state.hprev = ws.hprev;
+    state.memory = ws.memory;
+    state.t += h;
+    Ok(stats)
+}

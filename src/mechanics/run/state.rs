@@ -1,0 +1,239 @@
+//! The mutable state: time, coordinates, velocities, inputs, tunable parameters, outputs and the
+//! preallocated Newton workspace.
+
+use super::outputs::Outputs;
+use crate::mechanics::model::projection::{project_velocities, ProjWork};
+use crate::mechanics::model::runtime::Model;
+use crate::mechanics::step::newton::Work;
+use crate::mechanics::step::work::{history_len, Memory, HISTORY, TABLES};
+
+/// State of one simulation run. `Clone` is a complete snapshot.
+#[derive(Clone, Debug)]
+pub struct State {
+    /// Time, s.
+    pub(crate) t: f64,
+    /// Coordinates `[φ, d1, d2, d3]` per body (12 per body), world frame, m and 1.
+    pub(crate) q: Vec<f64>,
+    /// Velocities (12 per body), world frame, m/s and 1/s.
+    pub(crate) v: Vec<f64>,
+    /// Low part of the velocities (double-double with `v`), 12 per body.
+    pub(crate) v_lo: Vec<f64>,
+    /// Multiplier memory `λ/2` per active joint row (Newton warm start).
+    pub(crate) lam: Vec<f64>,
+    /// Unwrapped turn angles (one per rotational joint coordinate), rad.
+    pub(crate) angles: Vec<f64>,
+    /// Accumulated work of inputs minus damping dissipation, J.
+    pub(crate) work: f64,
+    /// Predictor history: difference tables of the stages' mean rates (see `Work::hist`).
+    pub(crate) hist: Vec<f64>,
+    /// Sizes of the stages of each table, newest first, s (0: none).
+    pub(crate) hprev: [[f64; HISTORY]; TABLES],
+    /// The solver's memory of the last stages.
+    pub(crate) memory: Memory,
+    pub(crate) inputs: Vec<f64>,
+    pub(crate) damping: Vec<f64>,
+    pub(crate) stiffness: Vec<f64>,
+    pub(crate) outputs: Outputs,
+    /// Newton workspace (not part of the snapshot).
+    pub(crate) ws: Work,
+    /// Output-velocity projection workspace (not part of the snapshot).
+    pub(crate) pw: ProjWork,
+}
+
+impl State {
+    /// The initial state of `model` at t = 0 (outputs computed).
+    #[must_use]
+    pub fn new(model: &Model) -> Self {
+        let def = model.def();
+        let mut s = Self {
+            t: 0.0,
+            q: model.q0.clone(),
+            v: model.v0.clone(),
+            v_lo: vec![0.0; model.v0.len()],
+            lam: vec![0.0; model.nrows],
+            angles: model.angles0.clone(),
+            work: 0.0,
+            hist: vec![0.0; history_len(model)],
+            hprev: [[0.0; HISTORY]; TABLES],
+            memory: Memory::default(),
+            inputs: vec![0.0; model.inputs().len()],
+            damping: def.joints.iter().map(|j| j.damping).collect(),
+            stiffness: def.joints.iter().map(|j| j.stiffness).collect(),
+            outputs: Outputs::for_model(model),
+            ws: Work::new(model),
+            pw: ProjWork::new(model),
+        };
+        s.refresh_outputs(model);
+        s
+    }
+
+    /// Recomputes the outputs from the current state: first the M-orthogonal projection of the
+    /// nodal velocities onto the admissible ones (one linear solve, `projection.rs`), then every
+    /// output. Allocates nothing. [`crate::mechanics::step`] calls it after every step;
+    /// [`crate::mechanics::step_state`] leaves it to the caller.
+    pub fn refresh_outputs(&mut self, model: &Model) {
+        // a singular projection (impossible for a regular model) falls back to the nodal
+        // velocities inside `project_velocities`
+        let _ = project_velocities(model, &self.q, &self.v, &mut self.pw);
+        super::outputs::update(
+            model,
+            &self.q,
+            &self.v,
+            &self.pw.vp,
+            &self.angles,
+            &self.stiffness,
+            self.work,
+            &mut self.outputs,
+        );
+    }
+
+    /// Current time, s.
+    #[must_use]
+    pub fn time(&self) -> f64 {
+        self.t
+    }
+
+    /// Sets the current time (e.g. the FMI start time) without changing anything else.
+    pub fn set_time(&mut self, t: f64) {
+        self.t = t;
+    }
+
+    /// Input values in the order of `Model::inputs` (held constant over each step).
+    #[must_use]
+    pub fn inputs(&self) -> &[f64] {
+        &self.inputs
+    }
+
+    /// Mutable input values.
+    pub fn inputs_mut(&mut self) -> &mut [f64] {
+        &mut self.inputs
+    }
+
+    /// Damping of joint `j` (tunable), N·m·s/rad or N·s/m.
+    #[must_use]
+    pub fn damping(&self, j: usize) -> f64 {
+        self.damping[j]
+    }
+
+    /// Sets the damping of joint `j`.
+    pub fn set_damping(&mut self, j: usize, c: f64) {
+        self.damping[j] = c;
+    }
+
+    /// Stiffness of joint `j` (tunable), N·m/rad or N/m.
+    #[must_use]
+    pub fn stiffness(&self, j: usize) -> f64 {
+        self.stiffness[j]
+    }
+
+    /// Sets the stiffness of joint `j` (outputs, including the spring energy, are recomputed at
+    /// the next step or restore).
+    pub fn set_stiffness(&mut self, j: usize, k: f64) {
+        self.stiffness[j] = k;
+    }
+
+    /// Outputs at the current time.
+    #[must_use]
+    pub fn outputs(&self) -> &Outputs {
+        &self.outputs
+    }
+
+    /// Coordinates `[φ, d1, d2, d3]` of every body (12 per body), world frame.
+    #[must_use]
+    pub fn coordinates(&self) -> &[f64] {
+        &self.q
+    }
+
+    /// Velocities (12 per body), world frame.
+    #[must_use]
+    pub fn velocities(&self) -> &[f64] {
+        &self.v
+    }
+
+    /// Test-only: forgets the predictor's history and the iteration's memory, as after
+    /// [`State::new`]; the next steps converge to the same solution (to the solver's
+    /// tolerance) from a poorer start. Never use outside tests.
+    #[doc(hidden)]
+    pub fn forget_history(&mut self) {
+        self.hist.fill(0.0);
+        self.hprev = [[0.0; HISTORY]; TABLES];
+        self.memory = Memory::default();
+    }
+
+    /// Every number that determines the future of this state (time, q, v, multipliers used as
+    /// the Newton start, inputs, tunable parameters, accumulated work, unwrapping memory), flat:
+    /// `[t, q.., v.., v_lo.., λ/2.., angles.., work, hist.., h_prev.., memory (3), inputs.., damping.., stiffness..]`.
+    #[must_use]
+    pub fn snapshot(&self) -> Vec<f64> {
+        let mut out = Vec::with_capacity(self.snapshot_len());
+        out.push(self.t);
+        out.extend_from_slice(&self.q);
+        out.extend_from_slice(&self.v);
+        out.extend_from_slice(&self.v_lo);
+        out.extend_from_slice(&self.lam);
+        out.extend_from_slice(&self.angles);
+        out.push(self.work);
+        out.extend_from_slice(&self.hist);
+        out.extend_from_slice(self.hprev.as_flattened());
+        out.extend_from_slice(&self.memory.to_f64());
+        out.extend_from_slice(&self.inputs);
+        out.extend_from_slice(&self.damping);
+        out.extend_from_slice(&self.stiffness);
+        out
+    }
+
+    fn snapshot_len(&self) -> usize {
+        2 + Memory::LEN
+            + HISTORY * TABLES
+            + self.q.len()
+            + self.hist.len()
+            + 2 * self.v.len()
+            + self.lam.len()
+            + self.angles.len()
+            + self.inputs.len()
+            + self.damping.len()
+            + self.stiffness.len()
+    }
+
+    /// Restores a [`State::snapshot`] taken from a state of the same model; recomputes outputs.
+    ///
+    /// # Errors
+    /// A message if the length does not match the model.
+    pub fn restore(&mut self, model: &Model, data: &[f64]) -> Result<(), String> {
+        if data.len() != self.snapshot_len() {
+            return Err(format!(
+                "snapshot length {} does not match the model ({})",
+                data.len(),
+                self.snapshot_len()
+            ));
+        }
+        let mut at = 0;
+        let mut take = |dst: &mut [f64]| {
+            dst.copy_from_slice(&data[at..at + dst.len()]);
+            at += dst.len();
+        };
+        let mut t = [0.0];
+        take(&mut t);
+        take(&mut self.q);
+        take(&mut self.v);
+        take(&mut self.v_lo);
+        take(&mut self.lam);
+        take(&mut self.angles);
+        let mut w = [0.0];
+        take(&mut w);
+        take(&mut self.hist);
+        let mut hp = [[0.0; HISTORY]; TABLES];
+        take(hp.as_flattened_mut());
+        let mut memory = [0.0; Memory::LEN];
+        take(&mut memory);
+        take(&mut self.inputs);
+        take(&mut self.damping);
+        take(&mut self.stiffness);
+        self.t = t[0];
+        self.work = w[0];
+        self.hprev = hp;
+        self.memory = Memory::from_f64(memory);
+        self.refresh_outputs(model);
+        Ok(())
+    }
+}

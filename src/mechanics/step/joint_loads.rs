@@ -1,0 +1,311 @@
+//! Joint loads of the Newton residual and Jacobian: actuators (consistent torques `±τ n̄` and
+//! slide forces), linear springs and viscous dampers on the joint coordinates (the midpoint
+//! gradient of a slide, the `atan2` discrete gradient of `turn` for an angle, the rotation
+//! increments for a spherical joint), added to the node forces of the joint's two bodies and,
+//! in a Jacobian pass, to their coupling blocks (theory.md §4.2; residual scaled by `h²/2`).
+// index loops over coupled fixed-size arrays read closer to the formulas than iterator chains
+#![allow(clippy::needless_range_loop)]
+
+use super::turn::{row_increment, theta_jac, turn_step};
+use super::work::{Held, Work};
+use crate::math::Vec3;
+use crate::mechanics::model::constraint::{body_nodes, DotRow, Nodes};
+use crate::mechanics::model::kernels::{
+    linvec_jac, outer, project, push_torque, rotation_increment, row_q, torque_jac,
+};
+use crate::mechanics::model::runtime::{DofRt, Model};
+use crate::mechanics::model::sparse_row::SparseRow;
+
+/// The two bodies of a joint at the iterate: parent `a` (`None`: the world, whose nodes are
+/// zero) and child `b`, their nodes at the midpoint `q̄` and the iterate `q` (world frame), and
+/// the directors of each.
+pub(crate) struct Pair {
+    /// Parent body.
+    pub a: Option<usize>,
+    /// Child body.
+    pub b: usize,
+    /// Parent nodes at `q̄`.
+    pub qa_bar: Nodes,
+    /// Child nodes at `q̄`.
+    pub qb_bar: Nodes,
+    /// Parent nodes at `q`.
+    pub qa: Nodes,
+    /// Child nodes at `q`.
+    pub qb: Nodes,
+    /// Parent directors at `q̄`.
+    pub dbar_a: [Vec3; 3],
+    /// Child directors at `q̄`.
+    pub dbar_b: [Vec3; 3],
+    /// Parent directors at `q`.
+    pub d_a: [Vec3; 3],
+    /// Child directors at `q`.
+    pub d_b: [Vec3; 3],
+}
+
+impl Pair {
+    /// The pair of joint bodies `a`, `b` at the workspace's iterate (`ws.qbar`, `ws.q`).
+    pub fn new(ws: &Work, a: Option<usize>, b: usize) -> Self {
+        let zero: Nodes = [Vec3::zeros(); 4];
+        let qa_bar = a.map_or(zero, |a| body_nodes(&ws.qbar, a));
+        let qb_bar = body_nodes(&ws.qbar, b);
+        let qa = a.map_or(zero, |a| body_nodes(&ws.q, a));
+        let qb = body_nodes(&ws.q, b);
+        Self {
+            a,
+            b,
+            qa_bar,
+            qb_bar,
+            qa,
+            qb,
+            dbar_a: [qa_bar[1], qa_bar[2], qa_bar[3]],
+            dbar_b: [qb_bar[1], qb_bar[2], qb_bar[3]],
+            d_a: [qa[1], qa[2], qa[3]],
+            d_b: [qb[1], qb[2], qb[3]],
+        }
+    }
+}
+
+/// What one joint adds: node forces on each body (`fa`, `fb`, world frame, scaled residual
+/// units) and, in a Jacobian pass, the node coupling `C_AB` (4 × 4) and the 6 × 6 blocks
+/// (row body, column body: `x_ab` parent rows / child columns, …).
+pub(crate) struct Acc {
+    /// Node forces on the parent.
+    pub fa: [Vec3; 4],
+    /// Node forces on the child.
+    pub fb: [Vec3; 4],
+    /// Node coupling parent–child (row-major 4 × 4).
+    pub cab: [f64; 16],
+    /// Block parent rows, child columns.
+    pub x_ab: [f64; 36],
+    /// Block child rows, parent columns.
+    pub x_ba: [f64; 36],
+    /// Block parent rows, parent columns.
+    pub x_aa: [f64; 36],
+    /// Block child rows, child columns.
+    pub x_bb: [f64; 36],
+}
+
+impl Acc {
+    /// All zero.
+    pub fn new() -> Self {
+        Self {
+            fa: [Vec3::zeros(); 4],
+            fb: [Vec3::zeros(); 4],
+            cab: [0.0; 16],
+            x_ab: [0.0; 36],
+            x_ba: [0.0; 36],
+            x_aa: [0.0; 36],
+            x_bb: [0.0; 36],
+        }
+    }
+
+    /// Zeroes the forces and (`jac`) the coupling blocks for the next joint.
+    pub fn clear(&mut self, jac: bool) {
+        self.fa = [Vec3::zeros(); 4];
+        self.fb = [Vec3::zeros(); 4];
+        if jac {
+            self.cab.fill(0.0);
+            for x in [
+                &mut self.x_ab,
+                &mut self.x_ba,
+                &mut self.x_aa,
+                &mut self.x_bb,
+            ] {
+                x.fill(0.0);
+            }
+        }
+    }
+}
+
+/// Whether joint `j` carries any load (an actuator, a spring or a damper); most joints of a
+/// chain do not, and their load pass is skipped.
+pub(crate) fn loaded(model: &Model, held: &Held, j: usize) -> bool {
+    model.joints[j].input.is_some() || held.stiffness[j] != 0.0 || held.damping[j] != 0.0
+}
+
+/// Adds the loads of joint `j` (stage size `h`, s) at the pair's iterate to `acc` (and the
+/// consistent torques to `ws.mom`, the Hessian terms of the load rows to `ws.cbody`).
+#[allow(clippy::too_many_lines, clippy::too_many_arguments)]
+pub(crate) fn joint_loads(
+    model: &Model,
+    ws: &mut Work,
+    held: &Held,
+    j: usize,
+    h: f64,
+    jac: bool,
+    p: &Pair,
+    acc: &mut Acc,
+) {
+    let jt = &model.joints[j];
+    let hh = 0.5 * h * h;
+    let zero: Nodes = [Vec3::zeros(); 4];
+    let (a, bb) = (p.a, p.b);
+    let (qa_bar, qb_bar, qa, qb) = (&p.qa_bar, &p.qb_bar, &p.qa, &p.qb);
+    let (dbar_a, dbar_b, d_a, d_b) = (&p.dbar_a, &p.dbar_b, &p.d_a, &p.d_b);
+    let Acc {
+        fa,
+        fb,
+        cab,
+        x_ab,
+        x_ba,
+        x_aa,
+        x_bb,
+    } = acc;
+    // coef ∇g(q̄) into the node forces and (Full) ½ coef S into the node couplings;
+    // returns ∇g(q̄) over the eight nodes (also used by the slide dofs)
+    let add_row = |row: &DotRow,
+                   coef: f64,
+                   fa: &mut [Vec3; 4],
+                   fb: &mut [Vec3; 4],
+                   cb: &mut [[f64; 16]],
+                   cab: &mut [f64; 16]| {
+        let sr = SparseRow::new(row, a.is_some());
+        let mut buf = [Vec3::zeros(); 8];
+        let grad = sr.grad_at(qa_bar, qb_bar, &mut buf);
+        sr.add_forces(grad, coef, fa, fb);
+        if jac {
+            sr.add_hessian(0.5 * coef, cb, a, bb, cab);
+        }
+        sr.expand(grad)
+    };
+    let c_d = held.damping[j];
+    let k_s = held.stiffness[j];
+    let mut turn = jt.turn0;
+    let mut sph_t = Vec3::zeros();
+    for (dk, dof) in jt.dofs.iter().enumerate() {
+        let act = jt.input.map_or(0.0, |i| actuator_input(dk, held.inputs, i));
+        match dof {
+            DofRt::Slide(row) => {
+                let qa_n = a.map_or(zero, |a| body_nodes(&ws.qn, a));
+                let qb_n = body_nodes(&ws.qn, bb);
+                let s0 = row.eval(&qa_n, &qb_n);
+                let s1 = row.eval(qa, qb);
+                let ds = s1 - s0;
+                let coef = act - 0.5 * k_s * (s0 + s1) - c_d * ds / h;
+                let grad = add_row(row, -hh * coef, fa, fb, &mut ws.cbody, cab);
+                if jac && (k_s != 0.0 || c_d != 0.0) {
+                    // rank-one term d(−hh·coef)/dx = hh (k/2 + c/h) ∇s(q) Q
+                    let kap = hh * (0.5 * k_s + c_d / h);
+                    let mut g1 = [Vec3::zeros(); 8];
+                    row.gradient(qa, qb, &mut g1);
+                    let cb_ = project(&grad[4..], dbar_b);
+                    let rb_ = row_q(&g1[4..], d_b);
+                    outer(x_bb, kap, &cb_, &rb_);
+                    if a.is_some() {
+                        let ca_ = project(&grad[..4], dbar_a);
+                        let ra_ = row_q(&g1[..4], d_a);
+                        outer(x_aa, kap, &ca_, &ra_);
+                        outer(x_ab, kap, &ca_, &rb_);
+                        outer(x_ba, kap, &cb_, &ra_);
+                    }
+                }
+            }
+            DofRt::Turn(tr) => {
+                // actuator: the consistent torque ±act n̄, its work act·δ (nothing to
+                // do for an unactuated or idle joint, the common case in a chain)
+                if act != 0.0 {
+                    let nbar = tr.axis.eval(qa_bar, qb_bar);
+                    push_torque(&mut ws.mom, bb, a, &(nbar * (hh * act)));
+                    if jac {
+                        let jb = linvec_jac(&tr.axis.b, d_b);
+                        let ja = linvec_jac(&tr.axis.a, d_a);
+                        torque_jac(x_bb, x_ba, x_ab, x_aa, hh * act, &jb, &ja, a.is_some());
+                    }
+                }
+                // the angle step, and the spring and damper as the discrete gradient
+                // F = f β (c̄ ∇s(q̄) − s̄ ∇c(q̄)) of `turn`
+                let t0 = ws.ang[turn];
+                let loaded = k_s != 0.0 || c_d != 0.0;
+                if loaded {
+                    let dqa = a.map_or(zero, |a| body_nodes(&ws.dq, a));
+                    let dqb = body_nodes(&ws.dq, bb);
+                    let qa_n = a.map_or(zero, |a| body_nodes(&ws.qn, a));
+                    let qb_n = body_nodes(&ws.qn, bb);
+                    let (s0, c0) = (tr.sin.eval(&qa_n, &qb_n), tr.cos.eval(&qa_n, &qb_n));
+                    let ds = row_increment(&tr.sin, qa_bar, qb_bar, &dqa, &dqb);
+                    let dc = row_increment(&tr.cos, qa_bar, qb_bar, &dqa, &dqb);
+                    let st = turn_step([s0, c0], [ds, dc], t0, k_s, c_d, h);
+                    let gs = add_row(&tr.sin, -hh * st.fs, fa, fb, &mut ws.cbody, cab);
+                    let gc = add_row(&tr.cos, -hh * st.fc, fa, fb, &mut ws.cbody, cab);
+                    if jac {
+                        // d(−hh f)/dx through (s₁, c₁): Σᵢⱼ −hh ∂fᵢ/∂j₁ P̄ᵀ∇i(q̄) ⊗ ∇j(q)Q
+                        let mut g1 = [Vec3::zeros(); 8];
+                        tr.sin.gradient(qa, qb, &mut g1);
+                        let (rs_b, rs_a) = (row_q(&g1[4..], d_b), row_q(&g1[..4], d_a));
+                        tr.cos.gradient(qa, qb, &mut g1);
+                        let (rc_b, rc_a) = (row_q(&g1[4..], d_b), row_q(&g1[..4], d_a));
+                        let mix = |ws_: f64, wc: f64, rs: &[f64; 6], rc: &[f64; 6]| {
+                            std::array::from_fn::<f64, 6, _>(|i| -hh * (ws_ * rs[i] + wc * rc[i]))
+                        };
+                        let j = st.jac;
+                        let (ms_b, mc_b) =
+                            (mix(j[0], j[1], &rs_b, &rc_b), mix(j[2], j[3], &rs_b, &rc_b));
+                        let (cs_b, cc_b) = (project(&gs[4..], dbar_b), project(&gc[4..], dbar_b));
+                        outer(x_bb, 1.0, &cs_b, &ms_b);
+                        outer(x_bb, 1.0, &cc_b, &mc_b);
+                        if a.is_some() {
+                            let (ms_a, mc_a) =
+                                (mix(j[0], j[1], &rs_a, &rc_a), mix(j[2], j[3], &rs_a, &rc_a));
+                            let (cs_a, cc_a) =
+                                (project(&gs[..4], dbar_a), project(&gc[..4], dbar_a));
+                            outer(x_ba, 1.0, &cs_b, &ms_a);
+                            outer(x_ba, 1.0, &cc_b, &mc_a);
+                            outer(x_ab, 1.0, &cs_a, &ms_b);
+                            outer(x_ab, 1.0, &cc_a, &mc_b);
+                            outer(x_aa, 1.0, &cs_a, &ms_a);
+                            outer(x_aa, 1.0, &cc_a, &mc_a);
+                        }
+                    }
+                }
+                turn += 1;
+            }
+        }
+    }
+    if let Some(axes) = &jt.sph_axes {
+        // relative rotation increment θᴮ − θᴬ of the two bodies
+        let th_b = rotation_increment(&body_nodes(&ws.qn, bb), qb);
+        let th_a = a.map_or(Vec3::zeros(), |a| {
+            rotation_increment(&body_nodes(&ws.qn, a), qa)
+        });
+        let rel = th_b - th_a;
+        let mut tv = -rel * (c_d / h);
+        for (k, ax) in axes.iter().enumerate() {
+            let act = jt.input.map_or(0.0, |i| held.inputs[i + k]);
+            if act != 0.0 {
+                let abar = ax.eval(qa_bar, qb_bar);
+                tv += abar * act;
+                if jac {
+                    let jb = linvec_jac(&ax.b, d_b);
+                    let ja = linvec_jac(&ax.a, d_a);
+                    torque_jac(x_bb, x_ba, x_ab, x_aa, hh * act, &jb, &ja, a.is_some());
+                }
+            }
+        }
+        sph_t += tv;
+        push_torque(&mut ws.mom, bb, a, &(sph_t * hh));
+        if jac && c_d != 0.0 {
+            // d(hh (c/h)(θᴮ − θᴬ))/dε through the exact ∂θ/∂ε of each body
+            let kap = hh * c_d / h;
+            let qa_n = a.map_or(zero, |a| body_nodes(&ws.qn, a));
+            let qb_n = body_nodes(&ws.qn, bb);
+            let jb = theta_jac(&qb_n, qb);
+            let ja = a.map(|_| theta_jac(&qa_n, qa));
+            for r in 0..3 {
+                for c in 0..3 {
+                    let o = (r + 3) * 6 + 3 + c;
+                    x_bb[o] += kap * jb[(r, c)];
+                    if let Some(ja) = &ja {
+                        x_aa[o] += kap * ja[(r, c)];
+                        x_ab[o] -= kap * jb[(r, c)];
+                        x_ba[o] -= kap * ja[(r, c)];
+                    }
+                }
+            }
+        }
+    }
+}
+
+/// Value of the actuator input driving dof `dk` of a joint whose inputs start at `first`.
+pub(crate) fn actuator_input(dk: usize, inputs: &[f64], first: usize) -> f64 {
+    inputs.get(first + dk).copied().unwrap_or(0.0)
+}

@@ -1,0 +1,27 @@
+//! Layer 2, the step: one energy–momentum step of size `h` on a preallocated workspace.
+//!
+//! - `work`: the workspace (`Work`), the loads held over a step (`Held`) and the solver's
+//!   memory;
+//! - the scaled EM residual and its Jacobian: `newton` (rows and bodies, the multiplier form),
+//!   `body_terms` (inertia and body loads), `joint_loads` (actuators, springs, dampers), `turn`
+//!   (the exact discrete gradient of a joint angle), `increment` (the multiplier form's linear
+//!   solve and update);
+//! - `reduced`: Newton on the joint increments for trees (the discrete null-space method);
+//! - `predictor` (the Newton start from the previous stages), `finish` (velocity update, work
+//!   account, unwrapped angles), `stage` (a robust stage, the order-4 composition), `error`.
+//!
+//! Uses: `model`, `linalg` and `crate::math`; never `run`.
+
+pub(crate) mod body_terms;
+#[cfg(test)]
+mod border_tests;
+pub(crate) mod error;
+pub(crate) mod finish;
+pub(crate) mod increment;
+pub(crate) mod joint_loads;
+pub(crate) mod newton;
+pub(crate) mod predictor;
+pub(crate) mod reduced;
+pub(crate) mod stage;
+pub(crate) mod turn;
+pub(crate) mod work;

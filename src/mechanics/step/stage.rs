@@ -1,0 +1,307 @@
+//! One energy–momentum step (order 2) or its triple-jump composition (order 4).
+//!
+//! A stage of size `h` solves the scaled EM equations (see `newton`) from the predictor
+//! `φ + h v̄`, `dᵢ ← cay(h ω̄) dᵢ` (mean rates extrapolated from the previous stages', see
+//! `predictor`), `μ = h² λₙ/2`, then sets `v_{n+1} = (2/h)(q_{n+1} − qₙ) − vₙ`.
+//! Order 4 is `Φ_{γ₁h} ∘ Φ_{γ₂h} ∘ Φ_{γ₁h}` with `γ₁ = 1/(2 − 2^{1/3})`, `γ₂ = 1 − 2γ₁`
+//! (theory.md §4.8); every stage is itself an EM step, so the conservation laws hold exactly.
+//! All work happens on workspace copies; the state is written only after every stage converged.
+// index loops over coupled fixed-size arrays read closer to the formulas than iterator chains
+#![allow(clippy::needless_range_loop)]
+
+use super::error::StepError;
+use super::finish::finish;
+use super::newton::{evaluate, resolve, solve, stage_rates, update, Held, Mode, Work};
+use super::predictor::{invalidate, predict, record};
+use crate::mechanics::model::runtime::Model;
+
+/// Statistics of one step.
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct StepStats {
+    /// Newton iterations over all stages.
+    pub iterations: usize,
+    /// Iterations among them that assembled and factored the Jacobian (the others are chord
+    /// iterations that reuse the factors: residual and back-substitution only).
+    pub factorizations: usize,
+    /// Final scaled residual.
+    pub residual: f64,
+    /// Stages the reduced iteration (joint increments) handed to the multiplier form because
+    /// it did not converge or its root failed the energy identity; 0 for models that use the
+    /// multiplier form throughout.
+    pub fallbacks: usize,
+}
+
+/// Triple-jump coefficient `γ₁ = 1/(2 − 2^{1/3})`.
+#[must_use]
+pub fn gamma1() -> f64 {
+    1.0 / (2.0 - 2f64.cbrt())
+}
+
+/// The stages of one step of size `h` on the workspace, from `ws.qn`, `ws.vn`, … (the state
+/// at the step start, copied in by the caller) to the end of the step in the same buffers:
+/// one stage at order 2, the triple jump `γ₁h, γ₂h, γ₁h` at order 4 (each stage extrapolates
+/// from its own predictor table). On error the workspace is left mid-step; the caller's state
+/// is untouched.
+///
+/// # Errors
+/// [`StepError`] when a stage's Newton iteration fails after its halvings.
+pub(crate) fn compose(
+    model: &Model,
+    ws: &mut Work,
+    held: &Held,
+    h: f64,
+    stats: &mut StepStats,
+) -> Result<(), StepError> {
+    let g1 = gamma1();
+    let stages: &[f64] = if model.settings().order == 4 {
+        &[g1, 1.0 - 2.0 * g1, g1]
+    } else {
+        &[1.0]
+    };
+    let order4 = stages.len() > 1;
+    for (k, &g) in stages.iter().enumerate() {
+        let table = if order4 { 1 + k } else { 0 };
+        robust_stage(model, ws, held, g * h, Some(table), 0, stats)?;
+    }
+    Ok(())
+}
+
+/// Largest contraction per iteration `|δₖ|/|δₖ₋₁|` with which chord iterations go on reusing
+/// the factors of the last Jacobian; a slower one assembles and factors a fresh Jacobian.
+const CHORD_RATE: f64 = 1e-2;
+
+/// Largest scaled body update of the first (Newton) iteration after which chord iterations
+/// are tried (their contraction rate is about the size of that update).
+const CHORD_START: f64 = 1e-3;
+
+/// A chord iterate is accepted when its estimated distance to the solution is below
+/// `CHORD_ACCEPT · tolerance` (1e-18 at the default tolerance). The residual is scaled by h²/2,
+/// so a scaled error of 1e-16 is still a force error of 1e-16·2/h²: with 1e-6 · tolerance a free
+/// body at h = 0.02 drifted by 2.6e-12 in energy through its flip (Newton's quadratic
+/// convergence lands near 1e-18).
+const CHORD_ACCEPT: f64 = 1e-8;
+
+/// ... unless the round-off floor of the scaled updates, which grows with the number of bodies
+/// `N` (measured ≈ 0.6 ε N: 8e-16 for the double pendulum, 1.2e-14 for chain100, 1.4e-13 for
+/// chain1000), is larger: an estimated error below `FLOOR_SHARE · ε · N`, about 1/60 of that
+/// floor, is as converged as the iterate can be (for one body the bound stays ≈ 1e-18).
+const FLOOR_SHARE: f64 = 1e-2;
+
+/// Stages solved in the multiplier form after the reduced iteration handed one back.
+const MULTIPLIER_STAGES: u32 = 8;
+
+/// Deepest halving of a stage whose Newton iteration failed.
+const MAX_HALVINGS: usize = 3;
+
+/// A stage of size `h`; if Newton fails (no convergence or a singular matrix), the stage is
+/// redone as two EM stages of `h/2` (at most [`MAX_HALVINGS`] deep). Every sub-stage is itself
+/// an EM step, so energy, momentum and the torque balance stay exact; only the local accuracy
+/// of that step changes.
+fn robust_stage(
+    model: &Model,
+    ws: &mut Work,
+    held: &Held,
+    h: f64,
+    table: Option<usize>,
+    depth: usize,
+    stats: &mut StepStats,
+) -> Result<(), StepError> {
+    // the reduced iteration first where it applies; a stage it does not converge is redone
+    // in the multiplier form (same equations, same solution), then halved. For a while after a
+    // stage was handed back, stages go to the multiplier form straight away (large steps on
+    // long chains: the next ones would likely fail alike, at the cost of a failed attempt each)
+    let reduced = model.uses_reduced_solver() && ws.memory.multipliers == 0;
+    ws.memory.multipliers = ws.memory.multipliers.saturating_sub(1);
+    let mut first = stage(model, ws, held, h, table, reduced);
+    if reduced {
+        // any failure of the reduced attempt (also a non-finite iterate, where its defects or
+        // arcs ran away) is handed to the multiplier form, which reports its own
+        if first.is_err() {
+            stats.fallbacks += 1;
+            ws.memory.multipliers = MULTIPLIER_STAGES;
+            first = stage(model, ws, held, h, table, false);
+        }
+    }
+    match first {
+        Ok(s) => {
+            stats.iterations += s.iterations;
+            stats.factorizations += s.factorizations;
+            stats.residual = s.residual;
+            Ok(())
+        }
+        Err(e @ (StepError::NoConvergence { .. } | StepError::Singular))
+            if depth < MAX_HALVINGS && model.settings().max_iterations > 1 =>
+        {
+            let _ = e;
+            if let Some(t) = table {
+                invalidate(ws, t);
+            }
+            robust_stage(model, ws, held, 0.5 * h, None, depth + 1, stats)?;
+            robust_stage(model, ws, held, 0.5 * h, None, depth + 1, stats)
+        }
+        Err(e) => Err(e),
+    }
+}
+
+/// One EM stage of size `h` (may be negative inside the composition) on the workspace.
+fn stage(
+    model: &Model,
+    ws: &mut Work,
+    held: &Held,
+    h: f64,
+    table: Option<usize>,
+    reduced: bool,
+) -> Result<StepStats, StepError> {
+    let nb = model.bodies.len();
+    predict(model, ws, h, table);
+    stage_rates(ws, h);
+    let tol = model.settings().tolerance;
+    let chord_accept = (CHORD_ACCEPT * tol).max(FLOOR_SHARE * f64::EPSILON * nb as f64);
+    let (it, factorizations, last_res) = if reduced {
+        let c = super::reduced::iterate::newton(model, ws, held, h, chord_accept)?;
+        (c.iterations, c.factorizations, c.error)
+    } else {
+        multiplier_newton(model, ws, held, h, chord_accept)?
+    };
+    // work and unwrapped angles at the converged iterate
+    let work = finish(model, ws, held, h);
+    if !work.is_finite() || ws.acc.iter().any(|x| !x.is_finite()) {
+        return Err(StepError::NonFinite("state"));
+    }
+    // v_{n+1} = vₙ + 2a/h in double-double (two-sum), a from the final evaluation
+    let two_over_h = 2.0 / h;
+    for ((vn, vlo), acc) in ws.vn.iter_mut().zip(ws.vlo.iter_mut()).zip(&ws.acc) {
+        let c = *vlo + acc * two_over_h;
+        (*vn, *vlo) = two_sum(*vn, c);
+    }
+    ws.qn.copy_from_slice(&ws.q);
+    let ih2 = 1.0 / (h * h);
+    for k in 0..ws.mu.len() {
+        ws.lam[k] = ws.mu[k] * ih2;
+    }
+    ws.ang.copy_from_slice(&ws.ang1);
+    ws.work += work;
+    record(ws, nb, h, table);
+    Ok(StepStats {
+        iterations: it,
+        factorizations,
+        residual: last_res,
+        fallbacks: 0,
+    })
+}
+
+/// The Newton iteration of a stage in the multiplier form (body increments and joint
+/// multipliers) from the predictor: returns the iterations, the factorisations among them and
+/// the estimated error of the accepted iterate.
+fn multiplier_newton(
+    model: &Model,
+    ws: &mut Work,
+    held: &Held,
+    h: f64,
+    chord_accept: f64,
+) -> Result<(usize, usize, f64), StepError> {
+    let tol = model.settings().tolerance;
+    let maxit = model.settings().max_iterations;
+    let mut it = 0;
+    let mut last_res: f64;
+    let mut prev_full = f64::INFINITY;
+    let (mut prev_upd, mut prev_dmu) = (f64::INFINITY, f64::INFINITY);
+    // best contraction of the body and multiplier updates since the last factorisation
+    let mut rates = [f64::INFINITY; 2];
+    // Newton with chord iterations: an iteration with a fresh Jacobian (assembled and factored)
+    // is followed by iterations that reuse its factors (residual + back-substitution) as long
+    // as they contract by ≤ CHORD_RATE per iteration; slower contraction refactors.
+    let mut fresh = true;
+    let mut factorizations = 0;
+    loop {
+        it += 1;
+        let mode = if fresh { Mode::Full } else { Mode::Residual };
+        let n = evaluate(model, ws, held, h, mode);
+        if !n.res.is_finite() {
+            return Err(StepError::NonFinite("state"));
+        }
+        let solved = if fresh {
+            factorizations += 1;
+            solve(model, ws)
+        } else {
+            resolve(model, ws)
+        };
+        if !solved {
+            return Err(StepError::Singular);
+        }
+        let (upd, dmu) = update(model, ws);
+        if !upd.is_finite() {
+            return Err(StepError::NonFinite("state"));
+        }
+        last_res = n.res.max(upd);
+        // a Newton update ≤ tol at a residual ≤ tol leaves an error of O(|δ|²); a chord update
+        // only an error of O(rate·|δ|), so chord iterates are accepted by the test below only
+        if fresh && upd <= tol && n.res <= tol {
+            break;
+        }
+        // the full update (bodies and multipliers) contracted by θ ≤ 1e-2 against the previous
+        // one, so the distance of the updated iterate to the solution is about θ·|δ|/(1 − θ)
+        // (for Newton smaller still). Accept once that estimate is below tol/100: as converged
+        // as a Newton iterate that passed the test above.
+        let full = upd.max(dmu);
+        let theta = full / prev_full;
+        if fresh && it > 1 && theta <= 1e-2 && theta * full <= 1e-2 * tol {
+            last_res = theta * full;
+            break;
+        }
+        // A chord iterate carries about rate·|δ| of error into the accepted state, and the
+        // conservation laws hold only as far as the equations are solved: the body unknowns
+        // must be within round-off (CHORD_ACCEPT · tol) by that estimate, the multipliers (which
+        // do no work while the constraints hold) within tol/100 like a Newton iterate.
+        // The chord rate is estimated by the best contraction seen since the factorisation:
+        // convergence is linear at that rate until round-off, where the observed ratios turn
+        // to noise (≈ 1) while the iterate is as converged as it gets.
+        if fresh {
+            rates = [f64::INFINITY; 2];
+        } else {
+            rates[0] = rates[0].min(upd / prev_upd);
+            rates[1] = rates[1].min(dmu / prev_dmu);
+            let [rb, rm] = rates;
+            let mu_ok = rm.min(1.0) * dmu <= 1e-2 * tol;
+            if rb <= 1e-2 && rb * upd <= chord_accept && mu_ok {
+                last_res = (rb * upd).max(rm * dmu);
+                break;
+            }
+            // round-off floor: after contracting well the updates stop shrinking at a size
+            // set by the number of bodies; a fresh Newton iteration would land on the same
+            // floor, so the iterate is accepted as Newton's would be at that size
+            if rb <= 1e-2 && upd >= 0.5 * prev_upd && upd <= 1e-2 * tol && mu_ok {
+                last_res = upd.max(rm * dmu);
+                break;
+            }
+        }
+        prev_upd = upd;
+        prev_dmu = dmu;
+        prev_full = full;
+        if it >= maxit {
+            return Err(StepError::NoConvergence {
+                iterations: it,
+                residual: n.res.max(upd),
+            });
+        }
+        // the last allowed iteration is a Newton one, so a tight iteration budget
+        // (`max_iterations`) converges as it did without chord iterations
+        // (after the first iteration the chord rate is about the size of its update: chord
+        // iterations follow a small one only)
+        let slow = if it == 1 {
+            upd > CHORD_START
+        } else {
+            theta > CHORD_RATE
+        };
+        fresh = slow || it + 1 >= maxit;
+    }
+    Ok((it, factorizations, last_res))
+}
+
+/// Error-free sum: `a + b = s + e` exactly.
+#[inline]
+fn two_sum(a: f64, b: f64) -> (f64, f64) {
+    let s = a + b;
+    let bb = s - a;
+    (s, (a - (s - bb)) + (b - bb))
+}
