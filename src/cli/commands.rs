@@ -5,7 +5,8 @@ use std::path::{Path, PathBuf};
 use triad::mechanics::Model;
 use triad::variables::{Causality, VarType, VariableTable};
 
-use super::{load, CliError};
+use super::error::CliError;
+use super::load::load;
 
 /// Validates MODEL; prints `ok`, a summary and the mechanics' notes. Writes nothing.
 pub fn check(model: &str) -> Result<(), CliError> {

@@ -1,16 +1,18 @@
 //! Argument parsing and dispatch of the `triad` command line.
 
 mod commands;
+mod error;
 mod input;
+mod load;
 mod output;
 mod plot;
 mod simulate;
 
-use std::path::{Path, PathBuf};
+use std::path::PathBuf;
 use std::process::ExitCode;
 
 use clap::{Parser, Subcommand};
-use triad::spec::{bundled, Format, Spec, SpecErrors};
+use error::CliError;
 
 /// triad: rigid multibody models to FMI 2.0 Co-Simulation FMUs.
 #[derive(Debug, Parser)]
@@ -47,27 +49,6 @@ pub enum Command {
     },
 }
 
-/// A failed command: the message to print.
-#[derive(Debug)]
-pub enum CliError {
-    /// Problems in the spec (one line each).
-    Spec(SpecErrors),
-    /// Anything else.
-    Other(String),
-}
-
-impl From<SpecErrors> for CliError {
-    fn from(e: SpecErrors) -> Self {
-        Self::Spec(e)
-    }
-}
-
-impl From<String> for CliError {
-    fn from(e: String) -> Self {
-        Self::Other(e)
-    }
-}
-
 /// Runs one command; prints errors to stderr.
 pub fn run(cli: Cli) -> ExitCode {
     let result = match cli.command {
@@ -93,42 +74,4 @@ pub fn run(cli: Cli) -> ExitCode {
             ExitCode::FAILURE
         }
     }
-}
-
-/// Loads MODEL: a spec file, a folder holding `spec.toml`, or, when no such file exists and
-/// MODEL has no extension, the shipped model of that name.
-pub fn load(model: &str) -> Result<Spec, SpecErrors> {
-    let path = Path::new(model);
-    // a model folder stands for its spec.toml (or spec.json)
-    if path.is_dir() {
-        for file in ["spec.toml", "spec.json"] {
-            if path.join(file).is_file() {
-                return Spec::from_path(&path.join(file));
-            }
-        }
-        return Err(SpecErrors::single(
-            model,
-            "",
-            "is a folder without spec.toml or spec.json",
-        ));
-    }
-    if !path.exists() && path.extension().is_none() {
-        if let Some((name, text)) = bundled().iter().find(|(n, _)| *n == model) {
-            return Spec::from_str(
-                text,
-                Format::Toml,
-                &format!("modelDescription/{name}/spec.toml"),
-            );
-        }
-        let names: Vec<&str> = bundled().iter().map(|(n, _)| *n).collect();
-        return Err(SpecErrors::single(
-            model,
-            "",
-            format!(
-                "no such file, and no shipped model of that name (shipped: {})",
-                names.join(", ")
-            ),
-        ));
-    }
-    Spec::from_path(path)
 }

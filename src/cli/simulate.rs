@@ -9,10 +9,11 @@ use indicatif::{ProgressBar, ProgressStyle};
 use triad::sim::Simulation;
 use triad::variables::{read_state, Accessor, Causality, VariableTable};
 
+use super::error::CliError;
 use super::input::InputTable;
+use super::load::load;
 use super::output::{finish, AtomicFile};
 use super::plot::{self, Series};
-use super::{load, CliError};
 
 /// Options of `triad simulate`.
 #[derive(Debug, Args)]

@@ -1,9 +1,9 @@
 //! Life cycle: version, instantiation, experiment set-up, initialisation, termination, reset,
 //! debug logging (FMI 2.0.4 §2.1.4–§2.1.6, §4.2.1).
 
+use super::guard::{ffi_fn, free_component, into_component, slice, with_instance};
 use super::logger::CLogger;
 use super::types::*;
-use super::{ffi_fn, free_component, into_component, slice, with_instance};
 use crate::fmu::resource::uri_to_path;
 use crate::fmu::{Category, Instance, LogSink, Status};
 use std::ffi::{c_char, CStr};

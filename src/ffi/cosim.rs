@@ -1,8 +1,8 @@
 //! Co-Simulation functions (FMI 2.0.4 §4.2.2–§4.2.3): `fmi2DoStep`, `fmi2CancelStep`, the
 //! status queries and the (unsupported) input/output derivative functions.
 
+use super::guard::{ffi_fn, non_null, with_instance};
 use super::types::*;
-use super::{ffi_fn, non_null, with_instance};
 use crate::fmu::{FmuError, Mode, Op, Status};
 
 ffi_fn! {

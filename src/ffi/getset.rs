@@ -1,8 +1,8 @@
 //! `fmi2Get*`/`fmi2Set*` (FMI 2.0.4 §2.1.7) and `fmi2GetDirectionalDerivative` (§2.1.9).
 //! Sets are all-or-nothing (`Instance::set_real`); gets write the output array only on success.
 
+use super::guard::{ffi_fn, slice, slice_mut, with_instance};
 use super::types::*;
-use super::{ffi_fn, slice, slice_mut, with_instance};
 use crate::fmu::FmuError;
 
 ffi_fn! {

@@ -42,7 +42,7 @@ impl LogSink for CLogger {
             f(
                 self.env,
                 name.as_ptr(),
-                super::code(status),
+                super::guard::code(status),
                 cat.as_ptr(),
                 c"%s".as_ptr(),
                 msg.as_ptr(),

@@ -1,8 +1,8 @@
 //! FMU states (FMI 2.0.4 §2.1.8): get/set/free and (de)serialisation. An `fmi2FMUstate` is a
 //! `Box<Snapshot>`; serialised bytes follow the format documented in `fmu::snapshot`.
 
+use super::guard::{ffi_fn, non_null, slice, with_instance};
 use super::types::*;
-use super::{ffi_fn, non_null, slice, with_instance};
 use crate::fmu::{FmuError, Op, Snapshot, Status};
 
 /// The snapshot behind an FMU state pointer.

@@ -186,7 +186,8 @@ mod tests {
 #[cfg(test)]
 mod shipped {
     use super::loop_residuals;
-    use crate::spec::{bundled, Format, Spec};
+    use crate::spec::schema::{Format, Spec};
+    use crate::spec::shipped::bundled;
 
     #[test]
     fn shipped_loops_close_to_round_off() {

@@ -6,8 +6,8 @@ use serde::de::DeserializeOwned;
 
 use super::error::{did_you_mean, Problem, Report, SpecErrors};
 use super::prune;
+use super::schema::{Format, JointKind, Spec, JOINT_TYPES};
 use super::values::{Coords, InertiaSpec, OrientationSpec};
-use super::{Format, JointKind, Spec, JOINT_TYPES};
 
 /// A parsed document node, TOML or JSON (kept apart: TOML can hold `nan`, JSON values cannot).
 #[derive(Clone, Copy)]

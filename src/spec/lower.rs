@@ -6,9 +6,8 @@ use crate::mechanics::{
     SolverSettings,
 };
 
-use super::error::SpecErrors;
+use super::schema::{JointKind, JointSpec, OriginSpec, Spec};
 use super::values::{rows_to_matrix, OrientationSpec};
-use super::{validate, JointKind, JointSpec, OriginSpec, Spec};
 
 /// The mechanics' joint type of a spec joint type.
 pub(crate) fn joint_type(kind: JointKind) -> JointType {
@@ -67,12 +66,12 @@ fn initial(j: &JointSpec) -> JointInitial {
         let q = init
             .q
             .as_ref()
-            .map(super::Coords::values)
+            .map(super::values::Coords::values)
             .unwrap_or_default();
         let qd = init
             .qd
             .as_ref()
-            .map(super::Coords::values)
+            .map(super::values::Coords::values)
             .unwrap_or_default();
         JointInitial::Coords { q, qd }
     }
@@ -169,10 +168,4 @@ pub(crate) fn build(spec: &Spec) -> (ModelDef, SolverSettings) {
         ..SolverSettings::default()
     };
     (def, settings)
-}
-
-/// Checks the spec's structure and lowers it.
-pub(super) fn lower(spec: &Spec, origin: &str) -> Result<(ModelDef, SolverSettings), SpecErrors> {
-    validate::structure(spec).finish(origin)?;
-    Ok(build(spec))
 }

@@ -5,13 +5,15 @@ use std::collections::HashMap;
 
 use nalgebra::SymmetricEigen;
 
-use crate::math::Vec3;
 use crate::mechanics::{Model, ModelError};
 
 use super::error::{did_you_mean, Report, SpecErrors};
+use super::schema::{BodySpec, Spec};
 use super::values::{rows_to_matrix, OrientationSpec};
-use super::{kinematics, lower, Spec};
+use super::{kinematics, lower};
+use common::check_finite;
 
+mod common;
 mod joints;
 
 /// Largest loop-closure violation accepted at the initial pose, m or 1: the mechanics' own
@@ -28,12 +30,6 @@ pub(crate) fn is_identifier(s: &str) -> bool {
 fn check_name(report: &mut Report, path: &str, name: &str) {
     if !is_identifier(name) {
         report.push(path, format!("\"{name}\" is not an identifier: use letters, digits and _ and do not start with a digit"));
-    }
-}
-
-fn check_finite(report: &mut Report, path: &str, values: &[f64]) {
-    if values.iter().any(|x| !x.is_finite()) {
-        report.push(path, "must be finite (nan and inf are not allowed)");
     }
 }
 
@@ -147,7 +143,7 @@ fn bodies(spec: &Spec, report: &mut Report) {
     }
 }
 
-fn inertia(report: &mut Report, path: &str, b: &super::BodySpec) {
+fn inertia(report: &mut Report, path: &str, b: &BodySpec) {
     let numbers = b.inertia.numbers();
     if numbers.iter().any(|x| !x.is_finite()) {
         check_finite(report, path, &numbers);
@@ -272,11 +268,6 @@ pub(super) fn validate(spec: &Spec, origin: &str) -> Result<(), SpecErrors> {
         }
     }
     report.finish(origin)
-}
-
-/// Axis helper shared with the joint checks: the unit vector or `None` for a zero vector.
-pub(crate) fn normalized(v: [f64; 3]) -> Option<Vec3> {
-    Vec3::from(v).try_normalize(1e-300)
 }
 
 #[cfg(test)]

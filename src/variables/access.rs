@@ -1,7 +1,7 @@
 //! Reading and writing variable values through their [`Accessor`]: inputs, outputs and tunable
 //! parameters live in the [`State`]; fixed parameters in the [`ModelDef`] and [`SolverSettings`].
 
-use super::Accessor;
+use super::types::Accessor;
 use crate::mechanics::{JointInitial, ModelDef, SolverSettings, State};
 
 /// Value of an input, an output or a tunable parameter (damping, stiffness) in `state`; `None`

@@ -1,8 +1,8 @@
 //! Parameters of the variable table: gravity, bodies, joint initial values, damping and
 //! stiffness, solver settings.
 
-use super::table::{coord_words, coords, index, Builder, Coord, XYZ};
-use super::{Accessor, Causality, Variability};
+use super::builder::{coord_words, coords, index, Builder, Coord, XYZ};
+use super::types::{Accessor, Causality, Variability};
 use crate::mechanics::{JointDef, JointInitial, JointType, ModelDef, SolverSettings};
 
 fn initial_value(j: &JointDef, k: usize, rate: bool) -> f64 {

@@ -1,148 +1,18 @@
 //! Construction of the variable table from a model definition (interface.md §3 names).
 
-use super::{Accessor, Causality, Initial, VarType, Variability, Variable, VariableTable};
+use super::builder::{coord_words, coords, index, Builder, Coord, XYZ};
+use super::params::parameters;
+use super::types::{Accessor, VariableTable};
 use crate::mechanics::{JointType, ModelDef, SolverSettings};
 
-/// What a joint coordinate measures.
-#[derive(Clone, Copy, PartialEq, Eq)]
-pub(super) enum Coord {
-    Angle,
-    Slide,
-}
-
-/// Coordinate kinds of a joint type in `q` order (spherical: none, it has a quaternion).
-pub(super) fn coords(kind: JointType) -> &'static [Coord] {
-    use Coord::{Angle, Slide};
-    match kind {
-        JointType::Revolute => &[Angle],
-        JointType::Prismatic => &[Slide],
-        JointType::Cylindrical => &[Slide, Angle],
-        JointType::Universal => &[Angle, Angle],
-        JointType::Planar => &[Slide, Slide, Angle],
-        JointType::Spherical | JointType::Fixed => &[],
-    }
-}
-
-/// `[k]` (1-based) when there are several, else nothing.
-pub(super) fn index(k: usize, n: usize) -> String {
-    if n == 1 {
-        String::new()
-    } else {
-        format!("[{}]", k + 1)
-    }
-}
-
-pub(super) const XYZ: [&str; 3] = ["x", "y", "z"];
-
-pub(super) fn coord_words(kind: JointType, k: usize) -> &'static str {
-    match (kind, k) {
-        (JointType::Revolute, _) => "angle about the axis",
-        (JointType::Prismatic, _) => "slide along the axis",
-        (JointType::Cylindrical, 0) => "slide along the axis",
-        (JointType::Cylindrical, _) => "angle about the axis",
-        (JointType::Universal, 0) => "angle about axis",
-        (JointType::Universal, _) => "angle about axis2",
-        (JointType::Planar, 0) => "x offset in the joint plane",
-        (JointType::Planar, 1) => "y offset in the joint plane",
-        _ => "angle about the plane normal",
-    }
-}
-
-/// Accumulates variables; the value reference is the position.
-pub(super) struct Builder {
-    pub(super) vars: Vec<Variable>,
-}
-
-impl Builder {
-    #[allow(clippy::too_many_arguments)]
-    pub(super) fn push(
-        &mut self,
-        name: String,
-        causality: Causality,
-        variability: Variability,
-        start: Option<f64>,
-        unit: Option<&'static str>,
-        description: String,
-        accessor: Accessor,
-    ) {
-        let initial = match causality {
-            Causality::Input => Initial::None,
-            Causality::Output => Initial::Calculated,
-            Causality::Parameter => Initial::Exact,
-        };
-        let ty = if accessor == Accessor::Order {
-            VarType::Integer
-        } else {
-            VarType::Real
-        };
-        let display_unit = if unit == Some("rad") {
-            Some("deg")
-        } else {
-            None
-        };
-        let vr = u32::try_from(self.vars.len()).unwrap_or(u32::MAX);
-        self.vars.push(Variable {
-            vr,
-            name,
-            ty,
-            causality,
-            variability,
-            initial,
-            start,
-            unit,
-            display_unit,
-            description,
-            accessor,
-        });
-    }
-
-    fn input(&mut self, name: String, unit: &'static str, description: String, slot: usize) {
-        self.push(
-            name,
-            Causality::Input,
-            Variability::Continuous,
-            Some(0.0),
-            Some(unit),
-            description,
-            Accessor::Input(slot),
-        );
-    }
-
-    fn output(
-        &mut self,
-        name: String,
-        unit: &'static str,
-        description: String,
-        accessor: Accessor,
-    ) {
-        self.push(
-            name,
-            Causality::Output,
-            Variability::Continuous,
-            None,
-            Some(unit),
-            description,
-            accessor,
-        );
-    }
-
-    pub(super) fn fixed(
-        &mut self,
-        name: String,
-        value: f64,
-        unit: Option<&'static str>,
-        description: String,
-        accessor: Accessor,
-    ) {
-        self.push(
-            name,
-            Causality::Parameter,
-            Variability::Fixed,
-            Some(value),
-            unit,
-            description,
-            accessor,
-        );
+impl VariableTable {
+    /// Builds the table of a model definition (names from `def`), parameters starting at the
+    /// values of `def` and `settings`. Order: inputs (in `Model::inputs` order), outputs (per
+    /// body, per joint, then `system.*`), parameters (gravity, bodies, joints, solver); the value
+    /// reference is the position in `vars`, the ModelVariables index is `vr + 1`.
+    #[must_use]
+    pub fn new(def: &ModelDef, settings: &SolverSettings) -> Self {
+        build(def, settings)
     }
 }
 
@@ -332,6 +202,6 @@ pub(super) fn build(def: &ModelDef, settings: &SolverSettings) -> VariableTable 
     let mut b = Builder { vars: Vec::new() };
     inputs(&mut b, def);
     outputs(&mut b, def);
-    super::params::parameters(&mut b, def, settings);
+    parameters(&mut b, def, settings);
     VariableTable { vars: b.vars }
 }

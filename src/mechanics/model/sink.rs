@@ -2,6 +2,8 @@
 //! velocity projection: the tree blocks (spanning tree: each body's 6 unknowns with the rows of
 //! its tree joint), the border of a loop system (rows and off-tree couplings of loop-closing
 //! joints, `linalg::border`), or, for the dense test oracle (`Model::dense`), one dense matrix.
+// index loops over the rows and columns of fixed-size blocks read closer to the layout
+#![allow(clippy::needless_range_loop)]
 
 use crate::mechanics::linalg::border::Border;
 use crate::mechanics::linalg::tree::{Block, NMAX};

@@ -3,9 +3,9 @@
 
 use std::collections::HashMap;
 
-use super::{check_finite, normalized};
+use super::common::{check_finite, normalized};
 use crate::spec::error::{did_you_mean, Report};
-use crate::spec::{JointKind, JointSpec, Spec};
+use crate::spec::schema::{JointKind, JointSpec, Spec};
 
 fn kind_name(k: JointKind) -> &'static str {
     crate::spec::lower::joint_type(k).name()

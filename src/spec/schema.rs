@@ -1,0 +1,262 @@
+//! The spec's schema: the serde structs read from TOML and JSON (one schema for both), as
+//! documented in the table of the module `spec`.
+
+use serde::{Deserialize, Serialize};
+
+use super::values::{Coords, InertiaSpec, OrientationSpec};
+use crate::mechanics::SolverSettings;
+
+/// Text format of a spec.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Format {
+    /// TOML (`.toml`).
+    Toml,
+    /// JSON (`.json`).
+    Json,
+}
+
+fn default_gravity() -> [f64; 3] {
+    [0.0, 0.0, -9.81]
+}
+
+/// A whole model spec. Field names are the spec's keys; see interface.md §2.
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct Spec {
+    /// Model identifier `[A-Za-z_][A-Za-z0-9_]*` (the FMU's modelIdentifier and `.so` name).
+    pub name: String,
+    /// Free text.
+    #[serde(default)]
+    pub description: String,
+    /// Gravity, world frame, m/s² (default `[0, 0, -9.81]`).
+    #[serde(default = "default_gravity")]
+    pub gravity: [f64; 3],
+    /// Default experiment.
+    #[serde(default)]
+    pub experiment: Experiment,
+    /// Solver settings.
+    #[serde(default)]
+    pub solver: SolverSpec,
+    /// Bodies (`[[body]]`).
+    #[serde(default)]
+    pub body: Vec<BodySpec>,
+    /// Joints (`[[joint]]`).
+    #[serde(default)]
+    pub joint: Vec<JointSpec>,
+    /// Body loads (`[[load]]`).
+    #[serde(default)]
+    pub load: Vec<LoadSpec>,
+}
+
+/// `[experiment]`: the FMU's DefaultExperiment and `triad simulate`'s defaults.
+#[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields, default)]
+pub struct Experiment {
+    /// Start time, s (default 0).
+    pub start: f64,
+    /// Stop time, s (default 10).
+    pub stop: f64,
+    /// Communication step, s (default 0.01: one output row per 10 ms).
+    pub step: f64,
+}
+
+impl Default for Experiment {
+    fn default() -> Self {
+        Self {
+            start: 0.0,
+            stop: 10.0,
+            step: 1e-2,
+        }
+    }
+}
+
+/// `[solver]`: integrator settings.
+#[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields, default)]
+pub struct SolverSpec {
+    /// Largest internal step, s (default 1e-3).
+    pub max_step: f64,
+    /// 2 (energy–momentum midpoint scheme) or 4 (its triple-jump composition); default 2.
+    #[serde(deserialize_with = "super::values::order")]
+    pub order: u8,
+    /// Newton tolerance on the scaled residual, in (0, 1e-3); default 1e-10, below which
+    /// conservation is at round-off.
+    pub tolerance: f64,
+}
+
+impl Default for SolverSpec {
+    fn default() -> Self {
+        let s = SolverSettings::default();
+        Self {
+            max_step: s.max_step,
+            order: s.order,
+            tolerance: s.tolerance,
+        }
+    }
+}
+
+/// `[[body]]`: a rigid body.
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct BodySpec {
+    /// Identifier, unique among bodies (`world` is reserved).
+    pub name: String,
+    /// Mass, kg (> 0).
+    pub mass: f64,
+    /// Centre of mass in the body frame, m (default origin).
+    #[serde(default)]
+    pub com: [f64; 3],
+    /// Inertia about the centre of mass, body axes, kg·m².
+    pub inertia: InertiaSpec,
+    /// Free bodies only: initial body-frame origin, world frame, m.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub position: Option<[f64; 3]>,
+    /// Free bodies only: initial orientation world ← body (default identity).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub orientation: Option<OrientationSpec>,
+    /// Free bodies only: initial velocity of the body-frame origin, world frame, m/s.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub velocity: Option<[f64; 3]>,
+    /// Free bodies only: initial angular velocity, world frame, rad/s.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub angular_velocity: Option<[f64; 3]>,
+}
+
+/// Joint type as written in a spec (`type = "revolute"`).
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(rename_all = "lowercase")]
+pub enum JointKind {
+    /// One rotation about `axis`.
+    Revolute,
+    /// One translation along `axis`.
+    Prismatic,
+    /// Slide along and rotation about `axis`: q = [slide, angle].
+    Cylindrical,
+    /// Rotations about `axis` then `axis2`.
+    Universal,
+    /// Three rotations (ball joint).
+    Spherical,
+    /// Motion in the plane normal to `axis`: q = [x, y, angle].
+    Planar,
+    /// Rigid connection.
+    Fixed,
+}
+
+/// The joint type names accepted in a spec.
+pub const JOINT_TYPES: [&str; 7] = [
+    "revolute",
+    "prismatic",
+    "cylindrical",
+    "universal",
+    "spherical",
+    "planar",
+    "fixed",
+];
+
+/// A placement `{ xyz, rpy }` (URDF origin): translation, m, and fixed-axis roll-pitch-yaw, rad.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields, default)]
+pub struct OriginSpec {
+    /// Translation, m.
+    pub xyz: [f64; 3],
+    /// Roll, pitch, yaw about the fixed x, y, z axes, rad.
+    pub rpy: [f64; 3],
+}
+
+/// `initial = { ... }` of a tree joint.
+#[derive(Clone, Debug, Default, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct InitialSpec {
+    /// Coordinates (not spherical): a number for one-coordinate joints, else a list.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub q: Option<Coords>,
+    /// Rates (not spherical), like `q`.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub qd: Option<Coords>,
+    /// Spherical: child frame relative to the joint frame as roll, pitch, yaw, rad.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub rpy: Option<[f64; 3]>,
+    /// Spherical: the same as a unit quaternion `[w, x, y, z]`.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub quat: Option<[f64; 4]>,
+    /// Spherical: relative angular velocity in the child frame, rad/s.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub w: Option<[f64; 3]>,
+}
+
+/// `[[joint]]`: a joint between a parent (a body or `world`) and a child body.
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct JointSpec {
+    /// Identifier, unique among joints.
+    pub name: String,
+    /// Joint type.
+    #[serde(rename = "type")]
+    pub kind: JointKind,
+    /// Parent body name, or `world`.
+    pub parent: String,
+    /// Child body name.
+    pub child: String,
+    /// Joint frame in the parent frame.
+    #[serde(default)]
+    pub origin: OriginSpec,
+    /// Loop-closing joints only: the joint frame in the child body frame. Naming it is what
+    /// makes the joint loop-closing.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub child_origin: Option<OriginSpec>,
+    /// Axis in the joint frame (rotation/slide axis, plane normal), normalised when lowered.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub axis: Option<[f64; 3]>,
+    /// Universal joints: second axis, perpendicular to `axis`.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub axis2: Option<[f64; 3]>,
+    /// Adds actuator inputs (not for planar or fixed joints).
+    #[serde(default)]
+    pub actuated: bool,
+    /// Viscous damping per coordinate, N·m·s/rad or N·s/m (≥ 0).
+    #[serde(default)]
+    pub damping: f64,
+    /// Linear stiffness about q = 0 per coordinate, N·m/rad or N/m (≥ 0; not spherical).
+    #[serde(default)]
+    pub stiffness: f64,
+    /// Initial coordinates and rates (tree joints only; default zero).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub initial: Option<InitialSpec>,
+}
+
+impl JointSpec {
+    /// True when the joint closes a kinematic loop (it names `child_origin`).
+    #[must_use]
+    pub fn is_loop_closing(&self) -> bool {
+        self.child_origin.is_some()
+    }
+}
+
+/// `[[load]]`: external inputs on a body (world frame; the force acts at the centre of mass).
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct LoadSpec {
+    /// Loaded body.
+    pub body: String,
+    /// Adds `body.B.torque[1..3]`, N·m.
+    #[serde(default)]
+    pub torque: bool,
+    /// Adds `body.B.force[1..3]`, N.
+    #[serde(default)]
+    pub force: bool,
+}
+
+impl Spec {
+    /// Deterministic JSON of the whole spec (the FMU's `resources/model.json`, hashed into the
+    /// GUID). `Spec::from_str(&s.canonical_json(), Format::Json, ..)` gives back an equal spec.
+    #[must_use]
+    pub fn canonical_json(&self) -> String {
+        serde_json::to_string_pretty(self).unwrap_or_default()
+    }
+
+    /// Index in `self.joint` of the joint called `name`.
+    #[must_use]
+    pub fn joint_index(&self, name: &str) -> Option<usize> {
+        self.joint.iter().position(|j| j.name == name)
+    }
+}

@@ -1,0 +1,16 @@
+//! Checks shared by the spec-wide and the joint checks.
+
+use crate::math::Vec3;
+use crate::spec::error::Report;
+
+/// Reports `path` unless every value is finite.
+pub(super) fn check_finite(report: &mut Report, path: &str, values: &[f64]) {
+    if values.iter().any(|x| !x.is_finite()) {
+        report.push(path, "must be finite (nan and inf are not allowed)");
+    }
+}
+
+/// Axis helper shared with the joint checks: the unit vector or `None` for a zero vector.
+pub(super) fn normalized(v: [f64; 3]) -> Option<Vec3> {
+    Vec3::from(v).try_normalize(1e-300)
+}
