@@ -26,6 +26,7 @@ const CASES: &[(&str, &[&str])] = &[
     ("actuated_planar.toml", &["joint[0].actuated: planar joints cannot be actuated"]),
     ("spherical_stiffness.toml", &["joint[0].stiffness: spherical joints take no stiffness"]),
     ("no_pose.toml", &["body[1]: body \"floating\" has no pose"]),
+    ("parent_without_pose.toml", &["body[0]: body \"base\" has no tree joint to the world (it is only a parent or a loop-closing child): attach it with a joint without child_origin, or make it a floating base by giving position"]),
     ("universal_not_perpendicular.toml", &["joint[0].axis2: must be perpendicular to axis"]),
     ("tree_cycle.toml", &["joint[0]: tree joints ba, ab form a cycle that never reaches the world"]),
     ("bad_initial_length.toml", &["joint[0].initial.q: a revolute joint has 1 coordinate: expected 1 number, found 2"]),

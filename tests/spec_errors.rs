@@ -73,7 +73,7 @@ fn free_body_fields_on_a_jointed_body_are_refused() {
     let err = Spec::from_str(&spec.canonical_json(), Format::Json, "p.json")
         .unwrap_err()
         .to_string();
-    assert!(err.contains("body[0].position: body \"rod\" is placed by joint \"hinge\"; only free bodies (no joints) take position"), "{err}");
+    assert!(err.contains("body[0].position: body \"rod\" is placed by joint \"hinge\"; only free bodies and floating bases (bodies that are no tree joint's child) take position"), "{err}");
 }
 
 #[test]

@@ -262,11 +262,11 @@ pub(super) fn check(spec: &Spec, report: &mut Report, body_index: &HashMap<&str,
         if let Some(ji) = tree_parent[b] {
             for (field, present) in free_fields {
                 if present {
-                    report.push(format!("{p}.{field}"), format!("body \"{}\" is placed by joint \"{}\"; only free bodies (no joints) take {field}: set the joint's initial values instead", body.name, spec.joint[ji].name));
+                    report.push(format!("{p}.{field}"), format!("body \"{}\" is placed by joint \"{}\"; only free bodies and floating bases (bodies that are no tree joint's child) take {field}: set the joint's initial values instead", body.name, spec.joint[ji].name));
                 }
             }
-        } else if touched[b] {
-            report.push(p, format!("body \"{}\" has no tree joint to the world (it is only a parent or a loop-closing child); attach it with a joint without child_origin", body.name));
+        } else if touched[b] && body.position.is_none() {
+            report.push(p, format!("body \"{}\" has no tree joint to the world (it is only a parent or a loop-closing child): attach it with a joint without child_origin, or make it a floating base by giving position = [x, y, z] (and optionally orientation, velocity, angular_velocity)", body.name));
         } else if body.position.is_none() && !unresolved && !duplicate(b) {
             report.push(p, format!("body \"{}\" has no pose: attach it with a [[joint]], or make it a free body by giving position = [x, y, z] (and optionally orientation, velocity, angular_velocity)", body.name));
         }
