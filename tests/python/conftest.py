@@ -54,6 +54,14 @@ def robot_arm():
 
 
 @pytest.fixture
+def space_arm_fmu():
+    fmus = {f.stem: f for f in _fmus()}
+    if "space_arm" not in fmus:
+        _missing(f"space_arm.fmu not found in TRIAD_FMU_DIR={FMU_DIR!r}")
+    return str(fmus["space_arm"])
+
+
+@pytest.fixture
 def triad_bin():
     b = os.environ.get("TRIAD_BIN")
     if not b or not os.path.exists(b):
