@@ -1,5 +1,6 @@
 //! Criterion benches of one EM step (order 2, h = 1e-3): the peers' double pendulum, heavy top
-//! and chainN (N = 10, 100, 1000); with loop-closing joints the four-bar and chain100_loop
+//! and chainN (N = 10, 100, 1000); chain100_floating (the same chain with its first link a
+//! floating base, gravity off, every joint turning); with loop-closing joints the four-bar and chain100_loop
 //! (chain100 closed to the world, bordered tree solve). `step/*` is the integrator step alone (`step_state`, what
 //! every sub-step of a communication step costs); `outputs/*` is one refresh of the outputs
 //! (velocity projection, energy, momenta, joint coordinates; once per communication step).
@@ -46,6 +47,7 @@ fn bench(c: &mut Criterion) {
         ("chain10".into(), common::chain(10)),
         ("chain100".into(), common::chain(100)),
         ("chain1000".into(), common::chain(1000)),
+        ("chain100_floating".into(), common::floating_chain(100)),
         ("fourbar".into(), common::four_bar(1.0, 3.0)),
         (
             "chain100_loop".into(),

@@ -253,6 +253,32 @@ pub fn chain(n: usize) -> ModelDef {
     }
 }
 
+/// `chain(n)` as a floating chain: its first link is a free body (the floating base, at the pose
+/// it has in `chain(n)`, at rest) instead of hanging from the world, gravity is off, and every
+/// joint starts turning (`qd = 2 sin(0.7 k)` rad/s), so the chain moves about its centre of mass.
+#[must_use]
+pub fn floating_chain(n: usize) -> ModelDef {
+    let mut def = chain(n);
+    def.gravity = Vec3::zeros();
+    let first = def.joints.remove(0);
+    let JointInitial::Coords { q, .. } = &first.initial else {
+        unreachable!("chain joints take coordinates")
+    };
+    def.free_bodies.push(FreeBodyInitial {
+        body: 0,
+        position: Vec3::zeros(),
+        orientation: exp_so3(&(first.axis * q[0])),
+        velocity: Vec3::zeros(),
+        angular_velocity: Vec3::zeros(),
+    });
+    for (k, j) in def.joints.iter_mut().enumerate() {
+        if let JointInitial::Coords { qd, .. } = &mut j.initial {
+            *qd = vec![2.0 * (0.7 * (k + 1) as f64).sin()];
+        }
+    }
+    def
+}
+
 /// `chain(n)` closed by a loop-closing revolute from the end of the last link (0.25 m below its
 /// joint, body frame) to the world (`to = None`) or to body `to`'s frame, placed where the end is
 /// at `q0` (frames coincide, axis = the last link's body x); the loop joint carries
