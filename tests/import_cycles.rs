@@ -372,6 +372,16 @@ fn uses(
                 .last()
                 .map_or_else(|| fpath.clone(), |(p, _)| p.clone());
             let line = toks[k].1;
+            let mut record = |p: &[String]| {
+                if let Some(m) = resolve(&mods, lib, &here, p) {
+                    found.push(Use {
+                        from: file.clone(),
+                        to: m.file.clone(),
+                        line,
+                        text: p.join("::"),
+                    });
+                }
+            };
             match &toks[k].0 {
                 Tok::Open => depth += 1,
                 Tok::Close => {
@@ -393,14 +403,7 @@ fn uses(
                     let mut paths = Vec::new();
                     let end = use_paths(&toks, k + 1, Vec::new(), &mut paths);
                     for p in paths {
-                        if let Some(m) = resolve(&mods, lib, &here, &p) {
-                            found.push(Use {
-                                from: file.clone(),
-                                to: m.file.clone(),
-                                line,
-                                text: p.join("::"),
-                            });
-                        }
+                        record(&p);
                     }
                     k = end;
                     continue;
@@ -418,14 +421,7 @@ fn uses(
                             }
                             j += 2;
                         }
-                        if let Some(m) = resolve(&mods, lib, &here, &p) {
-                            found.push(Use {
-                                from: file.clone(),
-                                to: m.file.clone(),
-                                line,
-                                text: p.join("::"),
-                            });
-                        }
+                        record(&p);
                         k = j;
                         continue;
                     }
