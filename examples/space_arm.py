@@ -11,6 +11,8 @@ round-off. Prints the final tracking error, the bus's rotation, the largest |sys
 for scale, the largest angular momentum of a single body during the run.
 """
 import argparse
+import json
+import os
 import shutil
 
 import numpy as np
@@ -26,17 +28,25 @@ KP = {"shoulder_roll": 60.0, "shoulder_yaw": 120.0, "shoulder_pitch": 120.0, "el
 KD = {"shoulder_roll": 180.0, "shoulder_yaw": 360.0, "shoulder_pitch": 360.0, "elbow": 120.0,
       "wrist_pitch": 10.0, "wrist_yaw": 10.0, "wrist_roll": 2.5}
 
-# mass properties of the bodies, as in modelDescription/space_arm/spec.toml (for the scale of
-# the single-body angular momenta only)
-BODIES = {
-    "bus": (600.0, [0.0, 0.0, 0.0], [[328.0, 6.0, -4.0], [6.0, 328.0, 3.0], [-4.0, 3.0, 256.0]]),
-}
-for _name, _m, _l, _r in [("shoulder_roll_link", 12.0, 0.3, 0.09), ("shoulder_yaw_link", 12.0, 0.3, 0.09),
-                          ("upper_arm", 28.0, 2.0, 0.08), ("forearm", 22.0, 2.0, 0.07),
-                          ("wrist_pitch_link", 6.0, 0.3, 0.06), ("wrist_yaw_link", 6.0, 0.3, 0.06),
-                          ("end_effector", 10.0, 0.4, 0.1)]:
-    _iyy = _m * _l * _l / 12 + _m * _r * _r / 4
-    BODIES[_name] = (_m, [_l / 2, 0.0, 0.0], np.diag([0.5 * _m * _r * _r, _iyy, _iyy]).tolist())
+
+def mass_properties(unzip_dir):
+    """{body: (mass, com, inertia 3x3)} from the model the FMU carries (resources/model.json,
+    the spec as built; inertia given as [Ixx, Iyy, Izz], [Ixx, Iyy, Izz, Ixy, Ixz, Iyz] or 3x3
+    rows)."""
+    with open(os.path.join(unzip_dir, "resources", "model.json")) as f:
+        spec = json.load(f)
+    out = {}
+    for b in spec["body"]:
+        i = b["inertia"]
+        if isinstance(i[0], list):
+            inertia = np.array(i)
+        elif len(i) == 3:
+            inertia = np.diag(i)
+        else:
+            xx, yy, zz, xy, xz, yz = i
+            inertia = np.array([[xx, xy, xz], [xy, yy, yz], [xz, yz, zz]])
+        out[b["name"]] = (b["mass"], np.array(b.get("com", [0.0, 0.0, 0.0])), inertia)
+    return out
 
 
 def body_momentum(r, R, v, w, mass, com, inertia):
@@ -64,10 +74,11 @@ def closed_loop(fmu_path, stop=None, step=None):
     unzip = extract(fmu_path)
     fmu = FMU2Slave(guid=md.guid, unzipDirectory=unzip, modelIdentifier=md.coSimulation.modelIdentifier,
                     instanceName="space_arm")
-    idx = lambda pre, n: [vr[f"{pre}[{i}]"] for i in range(1, n + 1)]
-    mat = lambda pre: [vr[f"{pre}[{i},{j}]"] for i in range(1, 4) for j in range(1, 4)]
-    body_vrs = {b: (idx(f"body.{b}.r", 3), mat(f"body.{b}.R"), idx(f"body.{b}.v", 3), idx(f"body.{b}.w", 3))
-                for b in BODIES}
+    bodies = mass_properties(unzip)
+    # per body: r (3), R (9, row-major), v (3), w (3) in one getReal call
+    body_vr = [vr[f"body.{b}.{x}"] for b in bodies
+               for x in ["r[1]", "r[2]", "r[3]"] + [f"R[{i},{j}]" for i in range(1, 4) for j in range(1, 4)]
+               + ["v[1]", "v[2]", "v[3]", "w[1]", "w[2]", "w[3]"]]
     try:
         fmu.instantiate()
         fmu.setupExperiment(startTime=0.0)
@@ -76,7 +87,7 @@ def closed_loop(fmu_path, stop=None, step=None):
         q_vr = [vr[f"joint.{j}.q"] for j in JOINTS]
         qd_vr = [vr[f"joint.{j}.qd"] for j in JOINTS]
         tau_vr = [vr[f"joint.{j}.tau"] for j in JOINTS]
-        l_vr = idx("system.L", 3)
+        l_vr = [vr[f"system.L[{i}]"] for i in range(1, 4)]
         ref = np.array([TARGET[j] for j in JOINTS])
         kp = np.array([KP[j] for j in JOINTS])
         kd = np.array([KD[j] for j in JOINTS])
@@ -86,15 +97,14 @@ def closed_loop(fmu_path, stop=None, step=None):
         for i in range(n + 1):
             q = np.array(fmu.getReal(q_vr))
             qd = np.array(fmu.getReal(qd_vr))
-            for b, (m, com, inertia) in BODIES.items():
-                rv, Rv, vv, wv = body_vrs[b]
-                R = np.array(fmu.getReal(Rv)).reshape(3, 3)
-                lb = body_momentum(np.array(fmu.getReal(rv)), R, np.array(fmu.getReal(vv)),
-                                   np.array(fmu.getReal(wv)), m, com, inertia)
+            state = np.array(fmu.getReal(body_vr)).reshape(len(bodies), 18)
+            for (b, (m, com, inertia)), x in zip(bodies.items(), state):
+                R = x[3:12].reshape(3, 3)
+                lb = body_momentum(x[0:3], R, x[12:15], x[15:18], m, com, inertia)
                 lb_max = max(lb_max, float(np.linalg.norm(lb)))
                 if b == "bus":
                     rec["bus_R"].append(R)
-                    rec["bus_r"].append(np.array(fmu.getReal(rv)))
+                    rec["bus_r"].append(x[0:3])
             rec["time"].append(i * h)
             rec["q"].append(q)
             rec["L"].append(np.array(fmu.getReal(l_vr)))

@@ -106,14 +106,6 @@ fn floating_tree(gravity: Vec3) -> ModelDef {
     }
 }
 
-/// A deterministic pseudo-random number in [−1, 1) (64-bit LCG).
-fn next(seed: &mut u64) -> f64 {
-    *seed = seed
-        .wrapping_mul(6_364_136_223_846_793_005)
-        .wrapping_add(1_442_695_040_888_963_407);
-    ((*seed >> 11) as f64 / (1u64 << 53) as f64) * 2.0 - 1.0
-}
-
 /// Centre of mass of the whole model from the body outputs (world frame).
 fn centre_of_mass(def: &ModelDef, s: &State) -> Vec3 {
     let (mut c, mut m) = (Vec3::zeros(), 0.0);
@@ -136,11 +128,11 @@ fn drifts(def: &ModelDef, h: f64, order: u8, n: usize, amp: f64, mask: Vec3) -> 
     let b0 = out.energy - out.work;
     let mut scale = out.energy.abs().max(1e-3);
     let (mut dp, mut dl, mut de) = (0.0_f64, 0.0_f64, 0.0_f64);
-    let mut seed = 0x5eed_u64 + (order as u64) * 7 + (h * 1e4) as u64;
+    let mut rng = Rng(0x5eed_u64 + (order as u64) * 7 + (h * 1e4) as u64);
     for k in 0..n {
         if k % 50 == 0 {
             for u in s.inputs_mut() {
-                *u = amp * next(&mut seed);
+                *u = amp * rng.next();
             }
         }
         step(&m, &mut s, h).expect("step converges");
@@ -234,13 +226,11 @@ fn both_newton_forms_give_the_same_floating_motion() {
     let mut multipliers = Model::new(&def, s0).unwrap();
     multipliers.set_reduced_solver(false);
     let (mut a, mut b) = (State::new(&reduced), State::new(&multipliers));
-    let mut seed = 7_u64;
+    let mut rng = Rng(7);
     let mut worst = 0.0_f64;
     for k in 0..300 {
         if k % 20 == 0 {
-            let u: Vec<f64> = (0..a.inputs().len())
-                .map(|_| 2.0 * next(&mut seed))
-                .collect();
+            let u: Vec<f64> = (0..a.inputs().len()).map(|_| 2.0 * rng.next()).collect();
             a.inputs_mut().copy_from_slice(&u);
             b.inputs_mut().copy_from_slice(&u);
         }

@@ -187,6 +187,62 @@ fn path_attrs(src: &str) -> Vec<(usize, String)> {
         .collect()
 }
 
+/// The module a token of a file lies in: the file's own module, or an inline `mod x { … }`
+/// inside it (tracked by brace depth).
+struct Scopes {
+    root: Vec<String>,
+    /// Open inline modules: (module path, brace depth at which it closes).
+    stack: Vec<(Vec<String>, usize)>,
+    depth: usize,
+}
+
+impl Scopes {
+    fn new(root: &[String]) -> Self {
+        Self {
+            root: root.to_vec(),
+            stack: Vec::new(),
+            depth: 0,
+        }
+    }
+
+    /// The module of the current token.
+    fn here(&self) -> Vec<String> {
+        self.stack
+            .last()
+            .map_or_else(|| self.root.clone(), |(p, _)| p.clone())
+    }
+
+    /// Whether the current token is outside every inline module.
+    fn at_top(&self) -> bool {
+        self.stack.is_empty()
+    }
+
+    /// Takes token `k` into account; returns the path of the inline module it opens, if any.
+    fn step(&mut self, toks: &[(Tok, usize)], k: usize) -> Option<Vec<String>> {
+        match &toks[k].0 {
+            Tok::Open => self.depth += 1,
+            Tok::Close => {
+                self.depth = self.depth.saturating_sub(1);
+                if self.stack.last().is_some_and(|(_, d)| *d == self.depth) {
+                    self.stack.pop();
+                }
+            }
+            Tok::Ident(w) if w == "mod" => {
+                if let (Some((Tok::Ident(m), _)), Some((Tok::Open, _))) =
+                    (toks.get(k + 1), toks.get(k + 2))
+                {
+                    let mut p = self.here();
+                    p.push(m.clone());
+                    self.stack.push((p.clone(), self.depth));
+                    return Some(p);
+                }
+            }
+            _ => {}
+        }
+        None
+    }
+}
+
 /// Reads the module tree of the crate rooted at `root_file`.
 fn module_tree(root_file: &Path) -> BTreeMap<Vec<String>, Module> {
     let mut mods = BTreeMap::new();
@@ -204,55 +260,39 @@ fn module_tree(root_file: &Path) -> BTreeMap<Vec<String>, Module> {
             dir.join(&name)
         };
         mods.insert(path.clone(), Module { file: file.clone() });
-        // inline module stack: (module path, brace depth at which it closes)
-        let mut stack: Vec<(Vec<String>, usize)> = Vec::new();
-        let mut depth = 0usize;
-        let mut k = 0;
-        while k < toks.len() {
-            match &toks[k].0 {
-                Tok::Open => depth += 1,
-                Tok::Close => {
-                    depth = depth.saturating_sub(1);
-                    if stack.last().is_some_and(|(_, d)| *d == depth) {
-                        stack.pop();
-                    }
-                }
-                Tok::Ident(w) if w == "mod" => {
-                    if let (Some((Tok::Ident(m), line)), Some((next, _))) =
-                        (toks.get(k + 1), toks.get(k + 2))
-                    {
-                        let mut here = stack
-                            .last()
-                            .map_or_else(|| path.clone(), |(p, _)| p.clone());
-                        here.push(m.clone());
-                        if *next == Tok::Open {
-                            mods.insert(here.clone(), Module { file: file.clone() });
-                            stack.push((here, depth));
-                        } else if *next == Tok::Semi && stack.is_empty() {
-                            let attr = attrs
-                                .iter()
-                                .rev()
-                                .find(|(l, _)| *l < *line && *line - *l <= 2)
-                                .map(|(_, p)| p.clone());
-                            let child = match attr {
-                                Some(p) => dir.join(p),
-                                None => {
-                                    let a = mod_dir.join(format!("{m}.rs"));
-                                    if a.exists() {
-                                        a
-                                    } else {
-                                        mod_dir.join(m).join("mod.rs")
-                                    }
-                                }
-                            };
-                            todo.push((here, child));
-                        }
-                        k += 2;
-                    }
-                }
-                _ => {}
+        let mut scopes = Scopes::new(&path);
+        for k in 0..toks.len() {
+            if let Some(inline) = scopes.step(&toks, k) {
+                mods.insert(inline, Module { file: file.clone() });
+                continue;
             }
-            k += 1;
+            let (Tok::Ident(w), Some((Tok::Ident(m), line)), Some((Tok::Semi, _))) =
+                (&toks[k].0, toks.get(k + 1), toks.get(k + 2))
+            else {
+                continue;
+            };
+            if w != "mod" || !scopes.at_top() {
+                continue;
+            }
+            let mut here = path.clone();
+            here.push(m.clone());
+            let attr = attrs
+                .iter()
+                .rev()
+                .find(|(l, _)| *l < *line && *line - *l <= 2)
+                .map(|(_, p)| p.clone());
+            let child = match attr {
+                Some(p) => dir.join(p),
+                None => {
+                    let a = mod_dir.join(format!("{m}.rs"));
+                    if a.exists() {
+                        a
+                    } else {
+                        mod_dir.join(m).join("mod.rs")
+                    }
+                }
+            };
+            todo.push((here, child));
         }
     }
     mods
@@ -364,13 +404,10 @@ fn uses(
     for (file, fpath) in files {
         let src = std::fs::read_to_string(file).unwrap();
         let toks = tokens(&src);
-        let mut stack: Vec<(Vec<String>, usize)> = Vec::new();
-        let mut depth = 0usize;
+        let mut scopes = Scopes::new(fpath);
         let mut k = 0;
         while k < toks.len() {
-            let here = stack
-                .last()
-                .map_or_else(|| fpath.clone(), |(p, _)| p.clone());
+            let here = scopes.here();
             let line = toks[k].1;
             let mut record = |p: &[String]| {
                 if let Some(m) = resolve(&mods, lib, &here, p) {
@@ -382,23 +419,11 @@ fn uses(
                     });
                 }
             };
+            if scopes.step(&toks, k).is_some() || matches!(toks[k].0, Tok::Open | Tok::Close) {
+                k += 1;
+                continue;
+            }
             match &toks[k].0 {
-                Tok::Open => depth += 1,
-                Tok::Close => {
-                    depth = depth.saturating_sub(1);
-                    if stack.last().is_some_and(|(_, d)| *d == depth) {
-                        stack.pop();
-                    }
-                }
-                Tok::Ident(w) if w == "mod" => {
-                    if let (Some((Tok::Ident(m), _)), Some((Tok::Open, _))) =
-                        (toks.get(k + 1), toks.get(k + 2))
-                    {
-                        let mut p = here.clone();
-                        p.push(m.clone());
-                        stack.push((p, depth));
-                    }
-                }
                 Tok::Ident(w) if w == "use" => {
                     let mut paths = Vec::new();
                     let end = use_paths(&toks, k + 1, Vec::new(), &mut paths);

@@ -10,6 +10,9 @@
 //! * `v0` = central finite difference of forward kinematics along `(q̇, twist)`;
 //! * every constraint row has zero rate, `G(q0) v0 = 0`.
 
+mod common;
+
+use common::Rng;
 use nalgebra::DMatrix;
 use triad::math::{exp_so3, Mat3, Vec3};
 use triad::mechanics::constraint::{nodes, Nodes, NODES};
@@ -28,25 +31,6 @@ const KINDS: [JointType; 7] = [
     JointType::Planar,
     JointType::Fixed,
 ];
-
-/// Deterministic uniform numbers in (−1, 1).
-struct Rng(u64);
-
-impl Rng {
-    fn next(&mut self) -> f64 {
-        self.0 = self
-            .0
-            .wrapping_mul(6_364_136_223_846_793_005)
-            .wrapping_add(1_442_695_040_888_963_407);
-        ((self.0 >> 11) as f64 / (1u64 << 53) as f64) * 2.0 - 1.0
-    }
-    fn vec(&mut self, s: f64) -> Vec3 {
-        Vec3::new(self.next() * s, self.next() * s, self.next() * s)
-    }
-    fn rot(&mut self) -> Mat3 {
-        exp_so3(&self.vec(2.0))
-    }
-}
 
 fn body(name: &str, rng: &mut Rng) -> BodyDef {
     let e = Vec3::new(

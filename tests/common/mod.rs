@@ -29,6 +29,25 @@ pub fn tol(x: f64) -> f64 {
     x * s
 }
 
+/// Deterministic uniform numbers in (−1, 1) (a 64-bit LCG), with random vectors and rotations.
+pub struct Rng(pub u64);
+
+impl Rng {
+    pub fn next(&mut self) -> f64 {
+        self.0 = self
+            .0
+            .wrapping_mul(6_364_136_223_846_793_005)
+            .wrapping_add(1_442_695_040_888_963_407);
+        ((self.0 >> 11) as f64 / (1u64 << 53) as f64) * 2.0 - 1.0
+    }
+    pub fn vec(&mut self, s: f64) -> Vec3 {
+        Vec3::new(self.next() * s, self.next() * s, self.next() * s)
+    }
+    pub fn rot(&mut self) -> Mat3 {
+        exp_so3(&self.vec(2.0))
+    }
+}
+
 /// Solver settings with step `h`, `order`, tolerance 1e-12 (round-off conservation).
 #[must_use]
 pub fn settings(h: f64, order: u8) -> SolverSettings {

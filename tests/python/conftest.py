@@ -45,20 +45,21 @@ def fmu(request):
     return str(request.param)
 
 
+def _shipped(name):
+    fmus = {f.stem: f for f in _fmus()}
+    if name not in fmus:
+        _missing(f"{name}.fmu not found in TRIAD_FMU_DIR={FMU_DIR!r}")
+    return str(fmus[name])
+
+
 @pytest.fixture
 def robot_arm():
-    fmus = {f.stem: f for f in _fmus()}
-    if "robot_arm" not in fmus:
-        _missing(f"robot_arm.fmu not found in TRIAD_FMU_DIR={FMU_DIR!r}")
-    return str(fmus["robot_arm"])
+    return _shipped("robot_arm")
 
 
 @pytest.fixture
 def space_arm_fmu():
-    fmus = {f.stem: f for f in _fmus()}
-    if "space_arm" not in fmus:
-        _missing(f"space_arm.fmu not found in TRIAD_FMU_DIR={FMU_DIR!r}")
-    return str(fmus["space_arm"])
+    return _shipped("space_arm")
 
 
 @pytest.fixture

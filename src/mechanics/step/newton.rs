@@ -30,7 +30,7 @@ pub(crate) use super::increment::{resolve, solve, update};
 use super::joint_loads::{joint_loads, loaded, Acc, Pair};
 pub(crate) use super::work::{Held, Mode, Norms, Work};
 use crate::math::Vec3;
-pub(crate) use crate::mechanics::model::constraint::body_nodes;
+use crate::mechanics::model::constraint::body_nodes;
 use crate::mechanics::model::constraint::{read3, write3};
 use crate::mechanics::model::kernels::node_block;
 use crate::mechanics::model::runtime::Model;
