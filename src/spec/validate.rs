@@ -102,10 +102,10 @@ fn bodies(spec: &Spec, report: &mut Report) {
                 "\"world\" is reserved for the fixed world frame",
             );
         }
-        if !(b.mass > 0.0 && b.mass.is_finite()) {
+        if !(b.mass >= 0.0 && b.mass.is_finite()) {
             report.push(
                 format!("{p}.mass"),
-                format!("must be positive and finite (got {})", b.mass),
+                format!("must be zero or positive and finite (got {})", b.mass),
             );
         }
         check_finite(report, &format!("{p}.com"), &b.com);
@@ -163,11 +163,11 @@ fn inertia(report: &mut Report, path: &str, b: &BodySpec) {
             path,
             "is too large to handle (its principal moments overflow)",
         );
-    } else if e[0] <= 0.0 {
+    } else if e[0] < -1e-12 * scale {
         report.push(
             path,
             format!(
-                "is not positive definite (principal moments {}, {}, {})",
+                "has a negative principal moment (principal moments {}, {}, {})",
                 sig(e[0]),
                 sig(e[1]),
                 sig(e[2])
@@ -262,6 +262,14 @@ pub(super) fn validate(spec: &Spec, origin: &str) -> Result<(), SpecErrors> {
                         .joint_index(joint)
                         .map_or(String::from("joint"), |i| format!("joint[{i}]"));
                     report.push(i, format!("loop-closing joint \"{joint}\" is violated by the initial pose by {residual:.3e}: choose the tree joints' initial q so that the loop closes"));
+                }
+                ModelError::Undetermined { body, why } => {
+                    let i = spec
+                        .body
+                        .iter()
+                        .position(|b| b.name == *body)
+                        .map_or(String::from("body"), |i| format!("body[{i}]"));
+                    report.push(i, format!("body \"{body}\" {why}"));
                 }
                 other => report.push("", format!("the mechanics rejected the model: {other}")),
             }

@@ -52,6 +52,11 @@ pub struct Block {
     pub l: [f64; 6 * NMAX],
     /// Right-hand side, then the solution.
     pub r: [f64; NMAX],
+    /// Factor the whole diagonal block `D` (Gauss–Jordan with partial pivoting over all `n`
+    /// unknowns) instead of eliminating through `K`: for a body whose own mass matrix is
+    /// singular or small next to what its joints carry (`K` singular or ill-conditioned
+    /// while `D` is regular). After [`factor_tree`], `d` then holds `D⁻¹`.
+    pub whole: bool,
 }
 
 impl Block {
@@ -65,6 +70,7 @@ impl Block {
             u: [0.0; NMAX * 6],
             l: [0.0; 6 * NMAX],
             r: [0.0; NMAX],
+            whole: false,
         }
     }
 
@@ -200,6 +206,56 @@ fn back_block<const M: usize>(b: &mut Block, xp: &[f64; 6]) {
     }
 }
 
+/// [`factor_block`] for a block factored whole (`n = N`): `d ← D⁻¹`, `U ← Y = D⁻¹ U` and the
+/// parent's update `L Y` if `has_parent`; `None` if a pivot is not above `1e-14 |D|`.
+#[inline(always)]
+fn factor_whole<const N: usize>(b: &mut Block, has_parent: bool) -> Option<[[f64; 6]; 6]> {
+    let mut di: [[f64; N]; N] = load(&b.d, 0, 0, NMAX);
+    let dmax = amax(&di);
+    if !(dmax.is_finite() && dmax > 0.0 && invert(&mut di, REL * dmax)) {
+        return None;
+    }
+    store(&mut b.d, 0, 0, NMAX, &di);
+    if !has_parent {
+        return Some([[0.0; 6]; 6]);
+    }
+    let u: [[f64; 6]; N] = load(&b.u, 0, 0, 6);
+    let y = mul(&di, &u);
+    store(&mut b.u, 0, 0, 6, &y);
+    let l: [[f64; N]; 6] = load(&b.l, 0, 0, NMAX);
+    Some(mul(&l, &y))
+}
+
+/// [`forward_block`] for a block factored whole (`n = N`): `r ← D⁻¹ r`, returns `L r`.
+#[inline(always)]
+fn forward_whole<const N: usize>(b: &mut Block, has_parent: bool) -> [f64; 6] {
+    let di: [[f64; N]; N] = load(&b.d, 0, 0, NMAX);
+    let r: [f64; N] = b.r[..N].try_into().unwrap_or([0.0; N]);
+    let x = mul_vec(&di, &r);
+    b.r[..N].copy_from_slice(&x);
+    if !has_parent {
+        return [0.0; 6];
+    }
+    let l: [[f64; N]; 6] = load(&b.l, 0, 0, NMAX);
+    mul_vec(&l, &x)
+}
+
+/// Calls `$f::<n>($args)` for the run-time supernode size `$n` ∈ 6..=12.
+macro_rules! by_size {
+    ($n:expr, $f:ident ( $($arg:expr),* ), $other:expr) => {
+        match $n {
+            6 => $f::<6>($($arg),*),
+            7 => $f::<7>($($arg),*),
+            8 => $f::<8>($($arg),*),
+            9 => $f::<9>($($arg),*),
+            10 => $f::<10>($($arg),*),
+            11 => $f::<11>($($arg),*),
+            12 => $f::<12>($($arg),*),
+            _ => $other,
+        }
+    };
+}
+
 /// Calls `$f::<m>($args)` for the run-time row count `$m` ∈ 0..=6 of a supernode.
 macro_rules! by_rows {
     ($m:expr, $f:ident ( $($arg:expr),* ), $other:expr) => {
@@ -228,7 +284,12 @@ pub fn factor_tree(blocks: &mut [Block], order: &[usize], parent: &[Option<usize
         let p = parent[c];
         let b = &mut blocks[c];
         let m = b.n.wrapping_sub(6);
-        let Some(upd) = by_rows!(m, factor_block(b, p.is_some()), None) else {
+        let upd = if b.whole {
+            by_size!(b.n, factor_whole(b, p.is_some()), None)
+        } else {
+            by_rows!(m, factor_block(b, p.is_some()), None)
+        };
+        let Some(upd) = upd else {
             return false;
         };
         if let Some(p) = p {
@@ -251,11 +312,19 @@ pub fn solve_factored(blocks: &mut [Block], order: &[usize], parent: &[Option<us
     // leaves to root: y_c = D_c⁻¹ r_c, r_p −= L_c y_c
     for &c in order.iter().rev() {
         let b = &mut blocks[c];
-        let ly = by_rows!(
-            b.n - 6,
-            forward_block(b, parent[c].is_some()),
-            unreachable!("supernode size")
-        );
+        let ly = if b.whole {
+            by_size!(
+                b.n,
+                forward_whole(b, parent[c].is_some()),
+                unreachable!("supernode size")
+            )
+        } else {
+            by_rows!(
+                b.n - 6,
+                forward_block(b, parent[c].is_some()),
+                unreachable!("supernode size")
+            )
+        };
         if let Some(p) = parent[c] {
             let r = &mut blocks[p].r;
             for i in 0..6 {

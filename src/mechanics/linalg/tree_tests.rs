@@ -277,3 +277,38 @@ fn singular_block_fails() {
     blocks[0].d[6 * NMAX + 1] = f64::NAN;
     assert!(!factor_tree(&mut blocks, &order, &parent));
 }
+
+/// A supernode whose body block `K` is singular while `D = [K B; C 0]` is regular (a massless
+/// body: `K` holds only the children's updates) fails through `K` and is solved when factored
+/// whole; whole and structured factorisations agree where both apply.
+#[test]
+fn whole_blocks_solve_a_singular_body_block() {
+    let parent = [None, Some(0), Some(1), Some(1)];
+    let order = [0, 1, 2, 3];
+    let mut rng = Rng(5);
+    for ms in [[6, 5, 6, 3], [5, 6, 5, 5], [3, 6, 4, 6]] {
+        // a rank-deficient K on the leaf 2: its first three rows and columns (the translations
+        // of a massless body) zero; D stays regular as C (m ≥ 4 rows) covers them
+        let (mut blocks, ..) = system(&parent, &ms, false, &mut rng);
+        for i in 0..6 {
+            for j in 0..6 {
+                if i < 3 || j < 3 {
+                    blocks[2].d[i * NMAX + j] = 0.0;
+                }
+            }
+        }
+        let (a, nt, off) = dense_of(&blocks, &parent);
+        let x = dense_solve(&a, nt, &off, &blocks);
+        let mut through_k = blocks.clone();
+        assert!(!factor_tree(&mut through_k, &order, &parent), "{ms:?}");
+        blocks[2].whole = true;
+        assert!(solve_tree(&mut blocks, &order, &parent), "{ms:?}");
+        assert_close(&blocks, &off, &x);
+    }
+    // every block whole on a regular system: the same solution
+    let (mut blocks, a, nt, off) = system(&parent, &[5, 3, 6, 0], false, &mut rng);
+    let x = dense_solve(&a, nt, &off, &blocks);
+    blocks.iter_mut().for_each(|b| b.whole = true);
+    assert!(solve_tree(&mut blocks, &order, &parent));
+    assert_close(&blocks, &off, &x);
+}

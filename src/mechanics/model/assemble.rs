@@ -89,43 +89,7 @@ impl Model {
                 "tolerance must be positive and max_iterations ≥ 1".into(),
             ));
         }
-        let mut bodies = Vec::with_capacity(def.bodies.len());
-        for b in &def.bodies {
-            // only J > 0 is needed: the projected iteration matrix carries P̄ᵀ M Q ≈ R J Rᵀ, so an
-            // indefinite Euler tensor (a body violating the triangle inequality, e.g. theory
-            // B1's J = (1, 1, 2.5)) still integrates
-            let e = euler_tensor(&b.inertia);
-            let sym =
-                (b.inertia - b.inertia.transpose()).abs().max() <= 1e-12 * b.inertia.abs().max();
-            let ok = b.mass > 0.0
-                && b.mass.is_finite()
-                && sym
-                && b.inertia
-                    .symmetric_eigenvalues()
-                    .iter()
-                    .all(|&x| x > 0.0 && x.is_finite());
-            if !ok {
-                return Err(ModelError::Invalid(format!(
-                    "body '{}': mass must be positive and the inertia symmetric positive definite",
-                    b.name
-                )));
-            }
-            bodies.push(BodyRt {
-                mass: b.mass,
-                e,
-                com: b.com,
-                fs: 0.0,
-                ms: 1.0 / (e.trace().abs() + 0.5 * e.norm()),
-            });
-        }
-        let lc = bodies
-            .iter()
-            .map(|b| (b.e.trace().abs() / b.mass).sqrt() + b.com.norm())
-            .fold(0.0_f64, f64::max)
-            .max(1e-6);
-        for b in &mut bodies {
-            b.fs = 1.0 / (b.mass * lc);
-        }
+        let (bodies, lc) = mass_data(def)?;
         let mut model = Self {
             def: def.clone(),
             settings,
@@ -150,10 +114,74 @@ impl Model {
             naive_torque: false,
         };
         build(&mut model, &joint_input)?;
+        super::determinacy::check(&model)?;
         model.reduced = covers(&model);
         model.exact_reduced = exact_jacobian(&model);
         Ok(model)
     }
+}
+
+/// Every body's runtime mass data and the characteristic length `lc` (m) of the model.
+///
+/// Residual scales: `fs = 1/(m lc)` for the force rows, `ms = 1/(|tr E| + ½|E|)` for the
+/// moment rows; a body without mass (or without inertia) takes those of the model's largest
+/// mass (largest Euler tensor) instead, so that its rows weigh like the loads it transmits.
+/// `lc = max_b (√(|tr E_b|/m_b) + |c_b|)` over the bodies with mass (at least 1e-6 m).
+fn mass_data(def: &ModelDef) -> Result<(Vec<BodyRt>, f64), ModelError> {
+    let mut bodies = Vec::with_capacity(def.bodies.len());
+    for b in &def.bodies {
+        // only J > 0 is needed of a body with inertia: the projected iteration matrix carries
+        // P̄ᵀ M Q ≈ R J Rᵀ, so an indefinite Euler tensor (a body violating the triangle
+        // inequality, e.g. theory B1's J = (1, 1, 2.5)) still integrates
+        let e = euler_tensor(&b.inertia);
+        let scale = b.inertia.abs().max();
+        let sym = (b.inertia - b.inertia.transpose()).abs().max() <= 1e-12 * scale;
+        let eig = b.inertia.symmetric_eigenvalues();
+        let ok = b.mass >= 0.0
+            && b.mass.is_finite()
+            && sym
+            && eig.iter().all(|&x| x >= -1e-12 * scale && x.is_finite());
+        if !ok {
+            return Err(ModelError::Invalid(format!(
+                "body '{}': mass must be zero or positive and the inertia symmetric positive \
+                 semi-definite",
+                b.name
+            )));
+        }
+        bodies.push(BodyRt {
+            mass: b.mass,
+            e,
+            com: b.com,
+            fs: 0.0,
+            ms: 1.0 / (e.trace().abs() + 0.5 * e.norm()),
+            singular: b.mass == 0.0 || eig.min() <= 1e-12 * eig.amax(),
+        });
+    }
+    let lc = bodies
+        .iter()
+        .filter(|b| b.mass > 0.0)
+        .map(|b| (b.e.trace().abs() / b.mass).sqrt() + b.com.norm())
+        .fold(0.0_f64, f64::max)
+        .max(bodies.iter().map(|b| b.com.norm()).fold(0.0, f64::max))
+        .max(1e-6);
+    let m_ref = bodies.iter().map(|b| b.mass).fold(0.0_f64, f64::max);
+    let ms_ref = bodies
+        .iter()
+        .map(|b| b.ms)
+        .filter(|x| x.is_finite())
+        .fold(f64::INFINITY, f64::min);
+    for b in &mut bodies {
+        let m = if b.mass > 0.0 { b.mass } else { m_ref };
+        b.fs = if m > 0.0 { 1.0 / (m * lc) } else { 1.0 / lc };
+        if !b.ms.is_finite() {
+            b.ms = if ms_ref.is_finite() {
+                ms_ref
+            } else {
+                1.0 / (lc * lc)
+            };
+        }
+    }
+    Ok((bodies, lc))
 }
 
 /// Fills the joint, tree and initial-state parts of `model`.

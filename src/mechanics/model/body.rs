@@ -48,13 +48,15 @@ impl BodyInertia {
     /// Inertial data of `def`.
     ///
     /// # Errors
-    /// [`ModelError::Invalid`] if the mass is not positive and finite, the inertia is not
-    /// symmetric positive definite, or the Euler tensor has a negative eigenvalue (triangle
-    /// inequalities of the principal moments violated).
+    /// [`ModelError::Invalid`] if the mass is negative or not finite, the inertia is not
+    /// symmetric positive semi-definite, or the Euler tensor has a negative eigenvalue
+    /// (triangle inequalities of the principal moments violated). A zero mass or a zero or
+    /// semi-definite inertia is accepted here; whether the model's motion is then still
+    /// determined is a property of the whole model (`Model::new` checks it).
     pub fn new(def: &BodyDef) -> Result<Self, ModelError> {
         let bad = |what: &str| ModelError::Invalid(format!("body '{}': {what}", def.name));
-        if !(def.mass.is_finite() && def.mass > 0.0) {
-            return Err(bad("mass must be positive and finite"));
+        if !(def.mass.is_finite() && def.mass >= 0.0) {
+            return Err(bad("mass must be zero or positive and finite"));
         }
         let j = def.inertia;
         if !j.iter().all(|x| x.is_finite()) || !def.com.iter().all(|x| x.is_finite()) {
@@ -68,8 +70,8 @@ impl BodyInertia {
         let euler = Mat3::identity() * (0.5 * j.trace()) - j;
         let ej = j.symmetric_eigenvalues();
         let ee = euler.symmetric_eigenvalues();
-        if ej.min() <= 0.0 || ee.min() < -1e-12 * scale {
-            return Err(bad("inertia must be positive definite with principal moments satisfying the triangle inequalities"));
+        if ej.min() < -1e-12 * scale || ee.min() < -1e-12 * scale {
+            return Err(bad("inertia must be positive semi-definite with principal moments satisfying the triangle inequalities"));
         }
         Ok(Self {
             mass: def.mass,

@@ -174,16 +174,32 @@ pub fn project_loop_velocities(
     let a = twist_jacobian(&geoms, q, n);
     let res = &a * &t0;
     // metric M_t^{-1/2} per body, then y = −pinv(A M_t^{-1/2}) A t0, Δt = M_t^{-1/2} y
+    // (a massless or inertia-less body's zero moments count as 1e-12 of the model's largest, so
+    // that its rates follow its joints; they are determined by them when the model is valid)
     let mut wi = DMatrix::zeros(6 * n, 6 * n);
+    let m_floor = 1e-12
+        * def
+            .bodies
+            .iter()
+            .map(|b| b.mass)
+            .fold(f64::MIN_POSITIVE, f64::max);
+    let j_floor = 1e-12
+        * def
+            .bodies
+            .iter()
+            .map(|b| b.inertia.amax())
+            .fold(f64::MIN_POSITIVE, f64::max);
     for (b, body) in def.bodies.iter().enumerate() {
         let inertia = BodyInertia::new(body)?;
         let r = rotation(&q[12 * b..12 * b + 12]);
         let eig = (r * inertia.inertia * r.transpose()).symmetric_eigen();
         let js = eig.eigenvectors
-            * nalgebra::Matrix3::from_diagonal(&eig.eigenvalues.map(|x| 1.0 / x.sqrt()))
+            * nalgebra::Matrix3::from_diagonal(
+                &eig.eigenvalues.map(|x| 1.0 / x.max(j_floor).sqrt()),
+            )
             * eig.eigenvectors.transpose();
         for c in 0..3 {
-            wi[(6 * b + c, 6 * b + c)] = 1.0 / inertia.mass.sqrt();
+            wi[(6 * b + c, 6 * b + c)] = 1.0 / inertia.mass.max(m_floor).sqrt();
         }
         wi.view_mut((6 * b + 3, 6 * b + 3), (3, 3)).copy_from(&js);
     }

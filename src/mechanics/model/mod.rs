@@ -5,7 +5,8 @@
 //!   primitive (`constraint`: nodes `[φ, d1, d2, d3]`, `LinVec`, `DotRow`), rows in sparse form
 //!   (`sparse_row`);
 //! - joints as rows of that primitive (`joint`), the initial configuration (`kinematics`),
-//!   loop closures (`loops`) and redundant loop rows (`redundancy`);
+//!   loop closures (`loops`), redundant loop rows (`redundancy`) and whether bodies without
+//!   mass leave the motion determined (`determinacy`);
 //! - the runtime [`runtime::Model`] and its set-up (`assemble`);
 //! - the director kernels shared by the step and the projection (`kernels`: reciprocal basis,
 //!   rotation increment, projected blocks), where the model's rows land in the linear system
@@ -19,6 +20,7 @@ pub(crate) mod assemble;
 pub mod body;
 pub mod constraint;
 pub mod def;
+pub(crate) mod determinacy;
 pub(crate) mod error;
 #[cfg(test)]
 pub(crate) mod fixtures;

@@ -60,6 +60,9 @@ pub(crate) struct BodyRt {
     pub fs: f64,
     /// Residual scale of the body's moment rows `1/(|tr E| + ½|E|)` (1/(kg·m²)).
     pub ms: f64,
+    /// The mass matrix in twist coordinates `diag(m I, J)` is singular (a massless body, a
+    /// point mass, a rod): its Newton supernode is factored whole (`linalg::tree::Block`).
+    pub singular: bool,
 }
 
 /// A rotational joint coordinate as the step sees it.

@@ -168,7 +168,13 @@ impl Work {
         let nb = model.bodies.len();
         let nr = model.nrows;
         let blocks = (0..nb)
-            .map(|b| Block::new(6 + model.tree_joint[b].map_or(0, |j| model.joints[j].rows.len())))
+            .map(|b| {
+                let mut k =
+                    Block::new(6 + model.tree_joint[b].map_or(0, |j| model.joints[j].rows.len()));
+                // a body without mass or inertia has a singular body block `K`
+                k.whole = model.bodies[b].singular;
+                k
+            })
             .collect();
         let nd = if model.dense { 6 * nb + nr } else { 0 };
         Self {
