@@ -115,9 +115,9 @@ pub fn write_param(
     match acc {
         Accessor::Gravity(i) => *def.gravity.get_mut(i).ok_or("no such gravity component")? = value,
         Accessor::Mass(b) => {
-            if value <= 0.0 {
-                return Err(format!("mass must be > 0 (got {value})"));
-            }
+            // zero is a mass like any other; whether the motion stays determined is decided
+            // when the model is built
+            nonneg("mass")?;
             def.bodies.get_mut(b).ok_or("no such body")?.mass = value;
         }
         Accessor::Inertia { body, i, j } => {
