@@ -2,7 +2,7 @@
 //! energy–momentum consistent rotationless (director) scheme.
 //!
 //! Module map (dependencies point left): `math ← mechanics ← spec ← variables ← sim ← fmu ← {ffi, xml}
-//! ← package ← main`. `mechanics` knows nothing of FMI, XML, zip or serde; `ffi` is the only
+//! ← package ← main`, and `spec ← urdf ← main` (URDF import produces a spec). `mechanics` knows nothing of FMI, XML, zip or serde; `ffi` is the only
 //! module with `unsafe` code.
 #![deny(unsafe_code)]
 #![warn(missing_docs)]
@@ -14,5 +14,6 @@ pub mod mechanics;
 pub mod package;
 pub mod sim;
 pub mod spec;
+pub mod urdf;
 pub mod variables;
 pub mod xml;

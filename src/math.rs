@@ -32,6 +32,21 @@ pub fn rpy_to_matrix(rpy: &Vec3) -> Mat3 {
     )
 }
 
+/// Fixed-axis roll, pitch, yaw of a rotation matrix (the inverse of [`rpy_to_matrix`]; pitch in
+/// `[−π/2, π/2]`; at pitch ±π/2, where only roll ∓ yaw is defined, roll is 0).
+#[must_use]
+pub fn matrix_to_rpy(r: &Mat3) -> Vec3 {
+    let pitch = (-r[(2, 0)]).atan2(r[(0, 0)].hypot(r[(1, 0)]));
+    if r[(0, 0)].hypot(r[(1, 0)]) < 1e-12 {
+        return Vec3::new(0.0, pitch, (-r[(0, 1)]).atan2(r[(1, 1)]));
+    }
+    Vec3::new(
+        r[(2, 1)].atan2(r[(2, 2)]),
+        pitch,
+        r[(1, 0)].atan2(r[(0, 0)]),
+    )
+}
+
 /// Rotation matrix of a unit quaternion `[w, x, y, z]` (normalised here).
 #[must_use]
 pub fn quat_to_matrix(q: &[f64; 4]) -> Mat3 {

@@ -165,10 +165,17 @@ pub fn fmu_bytes(spec: &Spec, cdylib: &[u8]) -> Result<Vec<u8>, Box<dyn Error>> 
 /// # Errors
 /// Spec problems (every one, with file and path), a missing cdylib, I/O errors.
 pub fn build_fmu(spec_path: &Path, out: &Path) -> Result<PathBuf, Box<dyn Error>> {
-    let spec = Spec::from_path(spec_path)?;
+    build_fmu_of(&Spec::from_path(spec_path)?, out)
+}
+
+/// Writes the FMU of a validated `spec` to `out` (as [`build_fmu`]).
+///
+/// # Errors
+/// If the cdylib cannot be found or read, or the FMU cannot be written.
+pub fn build_fmu_of(spec: &Spec, out: &Path) -> Result<PathBuf, Box<dyn Error>> {
     let lib = find_cdylib()?;
     let bytes = fmu_bytes(
-        &spec,
+        spec,
         &std::fs::read(&lib).map_err(|e| format!("{}: {e}", lib.display()))?,
     )?;
     if let Some(dir) = out.parent().filter(|d| !d.as_os_str().is_empty()) {

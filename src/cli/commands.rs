@@ -6,11 +6,12 @@ use triad::mechanics::Model;
 use triad::variables::{Causality, VarType, VariableTable};
 
 use super::error::CliError;
-use super::load::load;
+use super::load::{is_urdf, load, load_noted};
+use triad::urdf::ImportOptions;
 
 /// Validates MODEL; prints `ok`, a summary and the mechanics' notes. Writes nothing.
 pub fn check(model: &str) -> Result<(), CliError> {
-    let spec = load(model)?;
+    let (spec, import_notes) = load_noted(model, &ImportOptions::default())?;
     let (def, settings) = spec.lower()?;
     let built = Model::new(&def, settings).map_err(|e| format!("{model}: {e}"))?;
     let table = VariableTable::new(&def, &settings);
@@ -31,7 +32,7 @@ pub fn check(model: &str) -> Result<(), CliError> {
         plural(count(Causality::Output), "output", "outputs"),
         plural(count(Causality::Parameter), "parameter", "parameters")
     );
-    for note in built.notes() {
+    for note in import_notes.iter().chain(built.notes()) {
         println!("note: {note}");
     }
     Ok(())
@@ -121,13 +122,38 @@ pub fn build(model: &Path, output: Option<&Path>) -> Result<(), CliError> {
     } else {
         model
     };
-    let spec = triad::spec::Spec::from_path(model)?;
+    let spec = if is_urdf(model) {
+        load(&model.to_string_lossy())?
+    } else {
+        triad::spec::Spec::from_path(model)?
+    };
     let out = output.map_or_else(
         || PathBuf::from(format!("{}.fmu", spec.name)),
         Path::to_path_buf,
     );
-    let written =
-        triad::package::build_fmu(model, &out).map_err(|e| format!("{}: {e}", model.display()))?;
+    let written = triad::package::build_fmu_of(&spec, &out)
+        .map_err(|e| format!("{}: {e}", model.display()))?;
     println!("wrote {}", written.display());
+    Ok(())
+}
+
+/// `triad import ROBOT.urdf`: writes the equivalent spec (TOML) to `output`, or to standard
+/// output; nothing is written when the URDF has a problem.
+pub fn import(robot: &Path, output: Option<&Path>, opts: &ImportOptions) -> Result<(), CliError> {
+    let name = robot.to_string_lossy();
+    if !is_urdf(robot) {
+        return Err(format!("{name}: import reads a .urdf file").into());
+    }
+    let text = std::fs::read_to_string(robot).map_err(|e| format!("{name}: {e}"))?;
+    let (spec, outcome) = triad::urdf::import(&text, &name, opts)?;
+    spec.validate(&name)?;
+    let toml = triad::urdf::to_toml(&spec, &outcome).map_err(|e| format!("{name}: {e}"))?;
+    match output {
+        Some(out) => {
+            std::fs::write(out, toml).map_err(|e| format!("{}: {e}", out.display()))?;
+            eprintln!("wrote {}", out.display());
+        }
+        None => print!("{toml}"),
+    }
     Ok(())
 }

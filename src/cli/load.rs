@@ -1,13 +1,38 @@
-//! Finding MODEL: a spec file, a model folder or the name of a shipped model.
+//! Finding MODEL: a spec file, a URDF, a model folder or the name of a shipped model.
 
 use std::path::Path;
 
 use triad::spec::{bundled, Format, Spec, SpecErrors};
+use triad::urdf::{self, ImportOptions};
 
-/// Loads MODEL: a spec file, a folder holding `spec.toml`, or, when no such file exists and
-/// MODEL has no extension, the shipped model of that name.
+/// Loads MODEL: a spec file, a `.urdf` (imported with `opts`), a folder holding `spec.toml`,
+/// or, when no such file exists and MODEL has no extension, the shipped model of that name.
+/// Returns the validated spec and the import's notes (none for a spec).
+pub fn load_noted(model: &str, opts: &ImportOptions) -> Result<(Spec, Vec<String>), SpecErrors> {
+    let path = Path::new(model);
+    if is_urdf(path) {
+        let text = std::fs::read_to_string(path)
+            .map_err(|e| SpecErrors::single(model, "", format!("cannot read the file: {e}")))?;
+        let (spec, outcome) = urdf::import(&text, model, opts)?;
+        spec.validate(model)?;
+        return Ok((spec, outcome.notes));
+    }
+    load(model).map(|s| (s, Vec::new()))
+}
+
+/// True for a `.urdf` path.
+pub fn is_urdf(path: &Path) -> bool {
+    path.extension()
+        .and_then(|e| e.to_str())
+        .is_some_and(|e| e.eq_ignore_ascii_case("urdf"))
+}
+
+/// Loads MODEL as [`load_noted`] with the default import options, without the notes.
 pub fn load(model: &str) -> Result<Spec, SpecErrors> {
     let path = Path::new(model);
+    if is_urdf(path) {
+        return load_noted(model, &ImportOptions::default()).map(|(s, _)| s);
+    }
     // a model folder stands for its spec.toml (or spec.json)
     if path.is_dir() {
         for file in ["spec.toml", "spec.json"] {

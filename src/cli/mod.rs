@@ -28,12 +28,14 @@ pub struct Cli {
 pub enum Command {
     /// Validate MODEL and report every problem, with its location.
     Check {
-        /// Model spec (.toml or .json), or the name of a shipped model (e.g. double_pendulum).
+        /// Model spec (.toml or .json), a robot description (.urdf), or the name of a shipped
+        /// model (e.g. double_pendulum).
         model: String,
     },
     /// Print the variable table (name, valueReference, causality, variability, unit).
     Describe {
-        /// Model spec (.toml or .json), or the name of a shipped model.
+        /// Model spec (.toml or .json), a robot description (.urdf), or the name of a shipped
+        /// model.
         model: String,
     },
     /// Run MODEL natively and write every output variable every --step seconds as CSV.
@@ -41,11 +43,31 @@ pub enum Command {
     Simulate(simulate::SimulateArgs),
     /// Package an FMI 2.0 Co-Simulation FMU for MODEL.
     Build {
-        /// Model spec (.toml or .json).
+        /// Model spec (.toml or .json) or robot description (.urdf).
         model: PathBuf,
         /// Output file (default: <name>.fmu in the current directory).
         #[arg(short, long, value_name = "OUT.fmu")]
         output: Option<PathBuf>,
+    },
+    /// Write the model spec equivalent to a URDF (editable TOML; building from either gives
+    /// the same FMU). The root link is as the URDF says (a `world` link with a fixed joint:
+    /// welded; a floating joint: free); a bare root is welded to the world (as Pinocchio and
+    /// MuJoCo do). Links on fixed joints are merged into their parents.
+    Import {
+        /// Robot description (.urdf).
+        robot: PathBuf,
+        /// Output file (default: standard output).
+        #[arg(short, long, value_name = "OUT.toml")]
+        output: Option<PathBuf>,
+        /// Weld the base to the world even if the URDF declares it floating.
+        #[arg(long, conflicts_with = "floating_base")]
+        fixed_base: bool,
+        /// Free the base (a floating base: legged robots, humanoids, free-flying arms).
+        #[arg(long)]
+        floating_base: bool,
+        /// Keep links on fixed joints as bodies on `fixed` joints instead of merging them.
+        #[arg(long)]
+        keep_fixed: bool,
     },
 }
 
@@ -56,6 +78,21 @@ pub fn run(cli: Cli) -> ExitCode {
         Command::Describe { model } => commands::describe(&model),
         Command::Simulate(args) => simulate::run(&args),
         Command::Build { model, output } => commands::build(&model, output.as_deref()),
+        Command::Import {
+            robot,
+            output,
+            fixed_base,
+            floating_base,
+            keep_fixed,
+        } => {
+            let base = match (fixed_base, floating_base) {
+                (true, _) => triad::urdf::Base::Fixed,
+                (_, true) => triad::urdf::Base::Floating,
+                _ => triad::urdf::Base::Auto,
+            };
+            let opts = triad::urdf::ImportOptions { base, keep_fixed };
+            commands::import(&robot, output.as_deref(), &opts)
+        }
     };
     match result {
         Ok(()) => ExitCode::SUCCESS,

@@ -18,7 +18,7 @@ use super::plot::{self, Series};
 /// Options of `triad simulate`.
 #[derive(Debug, Args)]
 pub struct SimulateArgs {
-    /// Model spec (.toml or .json), or the name of a shipped model.
+    /// Model spec (.toml or .json), robot description (.urdf), or the name of a shipped model.
     pub model: String,
     /// Stop time, s (default: experiment.stop).
     #[arg(long, value_name = "T")]

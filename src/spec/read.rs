@@ -66,6 +66,16 @@ impl Spec {
         }
     }
 
+    /// Validates a spec built in code (e.g. by URDF import) as [`Spec::from_str`] validates a
+    /// file: structure, loop closure and the mechanics' own set-up; `origin` prefixes every
+    /// message.
+    ///
+    /// # Errors
+    /// Every problem found.
+    pub fn validate(&self, origin: &str) -> Result<(), SpecErrors> {
+        validate::validate(self, origin)
+    }
+
     /// Lowers to the mechanics' definition and solver settings (axes normalised, frames as
     /// matrices, tree joints first, then loop-closing ones).
     ///

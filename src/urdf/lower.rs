@@ -1,0 +1,443 @@
+//! From the URDF's links and joints to a model spec: the tree, the base, merged fixed links,
+//! inertials in the link frames, identifiers.
+//!
+//! ```text
+//! T_host←C  = T_host←P ∘ origin_j                 (a fixed joint j merges child C into P's host)
+//! c         = p + R · xyz_inertial                 (centre of mass in the host frame)
+//! J_c       = (R · R_rpy) J_urdf (R · R_rpy)ᵀ      (inertia about c, host axes)
+//! merged:     m = Σ mᵢ,  c = Σ mᵢ cᵢ / m,  J = Σ [J_cᵢ + mᵢ (|cᵢ − c|² I − (cᵢ − c)(cᵢ − c)ᵀ)]
+//! ```
+//!
+//! A body that takes a single inertial keeps it as written (no parallel-axis round trip).
+
+use std::collections::HashMap;
+
+use super::names::Namer;
+use super::robot::{at, Inertial, JointType, Pose, Robot};
+use super::{Base, ImportOptions};
+use crate::math::{matrix_to_rpy, rpy_to_matrix, Mat3, Vec3};
+use crate::spec::{
+    BodySpec, InertiaSpec, JointKind, JointSpec, OrientationSpec, OriginSpec, Problem, Spec,
+};
+
+/// A rigid placement: rotation and translation (frame in its host frame).
+#[derive(Clone, Copy, Debug)]
+struct Iso {
+    r: Mat3,
+    p: Vec3,
+}
+
+impl Iso {
+    const IDENTITY: Iso = Iso {
+        r: Mat3::new(1.0, 0.0, 0.0, 0.0, 1.0, 0.0, 0.0, 0.0, 1.0),
+        p: Vec3::new(0.0, 0.0, 0.0),
+    };
+
+    fn of(pose: &Pose) -> Self {
+        Self {
+            r: rpy_to_matrix(&Vec3::from(pose.rpy)),
+            p: Vec3::from(pose.xyz),
+        }
+    }
+
+    fn then(&self, b: &Iso) -> Iso {
+        Iso {
+            r: self.r * b.r,
+            p: self.p + self.r * b.p,
+        }
+    }
+
+    fn is_identity(&self) -> bool {
+        self.p == Vec3::zeros() && self.r == Mat3::identity()
+    }
+
+    /// The spec's `origin` of this placement (the URDF's own numbers where nothing was
+    /// composed).
+    fn origin(&self, written: Option<&Pose>) -> OriginSpec {
+        if let Some(w) = written {
+            return OriginSpec {
+                xyz: w.xyz,
+                rpy: w.rpy,
+            };
+        }
+        let rpy = matrix_to_rpy(&self.r);
+        OriginSpec {
+            xyz: [self.p.x, self.p.y, self.p.z],
+            rpy: [rpy.x, rpy.y, rpy.z],
+        }
+    }
+}
+
+/// Where a link ends up: which body (None: the world) and its frame in that body's frame;
+/// `written` when that frame is exactly the link's own joint origin (nothing composed).
+#[derive(Clone, Copy)]
+struct Host {
+    body: Option<usize>,
+    frame: Iso,
+}
+
+/// The inertial contributions merged into one body: `(mass, com, inertia about com)` in the
+/// body frame.
+type Parts = Vec<(f64, Vec3, Mat3)>;
+
+fn inertia_matrix(i: &[f64; 6]) -> Mat3 {
+    let [xx, yy, zz, xy, xz, yz] = *i;
+    Mat3::new(xx, xy, xz, xy, yy, yz, xz, yz, zz)
+}
+
+/// An inertial placed in a host frame: `(m, c, J_c)`.
+fn placed(inertial: &Inertial, frame: &Iso) -> (f64, Vec3, Mat3) {
+    let io = Iso::of(&inertial.origin);
+    let total = frame.then(&io);
+    let j = inertia_matrix(&inertial.inertia);
+    let jc = if total.r == Mat3::identity() {
+        j
+    } else {
+        total.r * j * total.r.transpose()
+    };
+    (inertial.mass, total.p, jc)
+}
+
+/// Mass, centre of mass and inertia about it of the merged parts.
+fn merge(parts: &Parts) -> (f64, Vec3, Mat3) {
+    match parts.as_slice() {
+        [] => (0.0, Vec3::zeros(), Mat3::zeros()),
+        [one] => *one,
+        _ => {
+            let m: f64 = parts.iter().map(|p| p.0).sum();
+            let c = if m > 0.0 {
+                parts.iter().map(|p| p.1 * p.0).sum::<Vec3>() / m
+            } else {
+                Vec3::zeros()
+            };
+            let mut j = Mat3::zeros();
+            for (mi, ci, ji) in parts {
+                let d = ci - c;
+                j += ji + (Mat3::identity() * d.norm_squared() - d * d.transpose()) * *mi;
+            }
+            (m, c, (j + j.transpose()) * 0.5)
+        }
+    }
+}
+
+/// What the import produced besides the spec.
+#[derive(Debug, Default)]
+pub struct Outcome {
+    /// Notes for `check` and `import` (what was merged, ignored or chosen).
+    pub notes: Vec<String>,
+    /// `(kind, identifier, URDF name)` for every body and joint whose name changed.
+    pub renamed: Vec<(&'static str, String, String)>,
+    /// `(identifier, URDF link names merged into it)` per body.
+    pub merged: Vec<(String, Vec<String>)>,
+}
+
+/// Lowers `robot` to a spec; `problems` collects what makes that impossible.
+#[allow(clippy::too_many_lines)]
+pub(crate) fn spec(
+    robot: &Robot,
+    opts: &ImportOptions,
+    origin: &str,
+    problems: &mut Vec<Problem>,
+) -> (Spec, Outcome) {
+    let mut out = Outcome::default();
+    let mut link_at: HashMap<&str, usize> = HashMap::new();
+    for (i, l) in robot.links.iter().enumerate() {
+        if let Some(&first) = link_at.get(l.name.as_str()) {
+            problems.push(Problem::new(
+                at(l.line, &format!("link \"{}\"", l.name)),
+                format!(
+                    "duplicate link name (also line {})",
+                    robot.links[first].line
+                ),
+            ));
+        } else {
+            link_at.insert(&l.name, i);
+        }
+    }
+    let mut parent_joint: Vec<Option<usize>> = vec![None; robot.links.len()];
+    let mut children: Vec<Vec<usize>> = vec![Vec::new(); robot.links.len()];
+    let mut joint_names: HashMap<&str, usize> = HashMap::new();
+    for (k, j) in robot.joints.iter().enumerate() {
+        let whose = format!("joint \"{}\"", j.name);
+        if let Some(&first) = joint_names.get(j.name.as_str()) {
+            problems.push(Problem::new(
+                at(j.line, &whose),
+                format!(
+                    "duplicate joint name (also line {})",
+                    robot.joints[first].line
+                ),
+            ));
+        } else {
+            joint_names.insert(&j.name, k);
+        }
+        let find = |role: &str, name: &str, problems: &mut Vec<Problem>| {
+            let found = link_at.get(name).copied();
+            if found.is_none() && !name.is_empty() {
+                problems.push(Problem::new(
+                    at(j.line, &whose),
+                    format!("{role} link \"{name}\" does not exist"),
+                ));
+            }
+            found
+        };
+        let (p, c) = (
+            find("parent", &j.parent, problems),
+            find("child", &j.child, problems),
+        );
+        let (Some(p), Some(c)) = (p, c) else { continue };
+        if let Some(other) = parent_joint[c] {
+            problems.push(Problem::new(
+                at(j.line, &whose),
+                format!(
+                    "link \"{}\" already has a parent joint (\"{}\", line {}): a URDF is a tree",
+                    j.child, robot.joints[other].name, robot.joints[other].line
+                ),
+            ));
+            continue;
+        }
+        if p == c {
+            problems.push(Problem::new(
+                at(j.line, &whose),
+                "parent and child are the same link",
+            ));
+            continue;
+        }
+        parent_joint[c] = Some(k);
+        children[p].push(k);
+        if j.mimic.is_some() {
+            out.notes.push(format!(
+                "joint '{}' mimics '{}': imported as an independent joint (the coupling is not enforced)",
+                j.name,
+                j.mimic.as_deref().unwrap_or_default()
+            ));
+        }
+    }
+    let roots: Vec<usize> = (0..robot.links.len())
+        .filter(|&i| {
+            parent_joint[i].is_none() && link_at.get(robot.links[i].name.as_str()) == Some(&i)
+        })
+        .collect();
+    let empty = Spec {
+        name: "robot".into(),
+        description: String::new(),
+        gravity: [0.0, 0.0, -9.81],
+        experiment: Default::default(),
+        solver: Default::default(),
+        body: Vec::new(),
+        joint: Vec::new(),
+        load: Vec::new(),
+    };
+    match roots.as_slice() {
+        [_] => {}
+        [] if robot.links.is_empty() => {
+            problems.push(Problem::new("", "the robot has no <link>"));
+            return (empty, out);
+        }
+        [] => {
+            problems.push(Problem::new(
+                "",
+                "every link has a parent joint: the joints form a cycle",
+            ));
+            return (empty, out);
+        }
+        many => {
+            let names: Vec<String> = many
+                .iter()
+                .map(|&i| format!("\"{}\" (line {})", robot.links[i].name, robot.links[i].line))
+                .collect();
+            problems.push(Problem::new(
+                "",
+                format!(
+                    "the robot has {} root links ({}): a URDF has exactly one link without a parent joint",
+                    many.len(),
+                    names.join(", ")
+                ),
+            ));
+            return (empty, out);
+        }
+    }
+    if !problems.is_empty() {
+        return (empty, out);
+    }
+    let root = roots[0];
+    // the world: a root link named "world" (it carries nothing); otherwise the root is the base
+    let world_root = robot.links[root].name == "world";
+    let mut bodies = Namer::new(&["world"]);
+    let mut joints = Namer::default();
+    let mut spec = empty;
+    spec.name = Namer::default().name(&robot.name);
+    spec.description = format!("imported from {origin} (URDF robot \"{}\")", robot.name);
+    let mut parts: Vec<Parts> = Vec::new();
+    let mut host: Vec<Option<Host>> = vec![None; robot.links.len()];
+    let mut new_body = |spec: &mut Spec, parts: &mut Vec<Parts>, link: usize, out: &mut Outcome| {
+        let original = &robot.links[link].name;
+        let id = bodies.name(original);
+        if id != *original {
+            out.renamed.push(("body", id.clone(), original.clone()));
+        }
+        spec.body.push(BodySpec {
+            name: id.clone(),
+            mass: 0.0,
+            com: [0.0; 3],
+            inertia: InertiaSpec::Full([0.0; 6]),
+            position: None,
+            orientation: None,
+            velocity: None,
+            angular_velocity: None,
+        });
+        parts.push(Vec::new());
+        out.merged.push((id, vec![original.clone()]));
+        spec.body.len() - 1
+    };
+    let free_root = !world_root && opts.base == Base::Floating;
+    if world_root || !free_root {
+        host[root] = Some(Host {
+            body: None,
+            frame: Iso::IDENTITY,
+        });
+        if !world_root {
+            out.notes.push(format!(
+                "root link '{}' is welded to the world (use --floating-base to free it)",
+                robot.links[root].name
+            ));
+        }
+    } else {
+        let b = new_body(&mut spec, &mut parts, root, &mut out);
+        spec.body[b].position = Some([0.0; 3]);
+        host[root] = Some(Host {
+            body: Some(b),
+            frame: Iso::IDENTITY,
+        });
+    }
+    // breadth-first from the root: parents are placed before their children
+    let mut queue = vec![root];
+    let mut next = 0;
+    while next < queue.len() {
+        let pl = queue[next];
+        next += 1;
+        let Some(ph) = host[pl] else { continue };
+        for &k in &children[pl] {
+            let j = &robot.joints[k];
+            let cl = link_at[j.child.as_str()];
+            queue.push(cl);
+            let frame = ph.frame.then(&Iso::of(&j.origin));
+            let written = ph.frame.is_identity().then_some(&j.origin);
+            let is_base_joint = world_root && pl == root;
+            let kind = match j.kind {
+                JointType::Floating if is_base_joint && opts.base != Base::Fixed => None,
+                JointType::Floating if is_base_joint => Some(JointKind::Fixed),
+                JointType::Fixed if is_base_joint && opts.base == Base::Floating => None,
+                JointType::Floating => {
+                    problems.push(Problem::new(
+                        at(j.line, &format!("joint \"{}\"", j.name)),
+                        "a floating joint is supported only between the world link and the base",
+                    ));
+                    continue;
+                }
+                JointType::Fixed => Some(JointKind::Fixed),
+                JointType::Revolute | JointType::Continuous => Some(JointKind::Revolute),
+                JointType::Prismatic => Some(JointKind::Prismatic),
+                JointType::Planar => Some(JointKind::Planar),
+            };
+            let Some(kind) = kind else {
+                // the base is free: a floating body placed at the joint's origin
+                let b = new_body(&mut spec, &mut parts, cl, &mut out);
+                let o = frame.origin(written);
+                spec.body[b].position = Some(o.xyz);
+                let r = rpy_to_matrix(&Vec3::from(o.rpy));
+                spec.body[b].orientation =
+                    Some(OrientationSpec::Matrix(std::array::from_fn(|i| {
+                        std::array::from_fn(|c| r[(i, c)])
+                    })));
+                host[cl] = Some(Host {
+                    body: Some(b),
+                    frame: Iso::IDENTITY,
+                });
+                continue;
+            };
+            if kind == JointKind::Fixed && !opts.keep_fixed {
+                // merged into the parent's host
+                host[cl] = Some(Host {
+                    body: ph.body,
+                    frame,
+                });
+                match ph.body {
+                    Some(b) => out.merged[b].1.push(j.child.clone()),
+                    None if robot.links[cl].inertial.is_some_and(|i| i.mass > 0.0) => {
+                        out.notes.push(format!(
+                            "link '{}' is welded to the world: its mass does not move",
+                            j.child
+                        ));
+                    }
+                    None => {}
+                }
+                continue;
+            }
+            let b = new_body(&mut spec, &mut parts, cl, &mut out);
+            host[cl] = Some(Host {
+                body: Some(b),
+                frame: Iso::IDENTITY,
+            });
+            let id = joints.name(&j.name);
+            if id != j.name {
+                out.renamed.push(("joint", id.clone(), j.name.clone()));
+            }
+            let movable = matches!(kind, JointKind::Revolute | JointKind::Prismatic);
+            if j.friction > 0.0 {
+                out.notes.push(format!(
+                    "joint '{}': <dynamics friction> is not modelled (inactive)",
+                    j.name
+                ));
+            }
+            if j.limit
+                .is_some_and(|l| matches!((l.lower, l.upper), (Some(lo), Some(hi)) if lo < hi))
+                && matches!(j.kind, JointType::Revolute | JointType::Prismatic)
+            {
+                out.notes.push(format!(
+                    "joint '{}': position limits are not enforced (joint stops are not implemented yet)",
+                    j.name
+                ));
+            }
+            spec.joint.push(JointSpec {
+                name: id,
+                kind,
+                parent: ph
+                    .body
+                    .map_or_else(|| "world".to_string(), |p| spec.body[p].name.clone()),
+                child: spec.body[b].name.clone(),
+                origin: frame.origin(written),
+                child_origin: None,
+                axis: (kind != JointKind::Fixed).then_some(j.axis),
+                axis2: None,
+                actuated: movable,
+                damping: j.damping,
+                stiffness: 0.0,
+                initial: None,
+            });
+        }
+    }
+    // the inertials, each in its host body's frame
+    for (l, link) in robot.links.iter().enumerate() {
+        let (Some(h), Some(inertial)) = (host[l], link.inertial.as_ref()) else {
+            continue;
+        };
+        if let Some(b) = h.body {
+            parts[b].push(placed(inertial, &h.frame));
+        }
+    }
+    for (b, p) in parts.iter().enumerate() {
+        let (m, c, j) = merge(p);
+        let body = &mut spec.body[b];
+        body.mass = m;
+        body.com = [c.x, c.y, c.z];
+        body.inertia = InertiaSpec::Full([
+            j[(0, 0)],
+            j[(1, 1)],
+            j[(2, 2)],
+            j[(0, 1)],
+            j[(0, 2)],
+            j[(1, 2)],
+        ]);
+    }
+    (spec, out)
+}

@@ -1,0 +1,86 @@
+//! URDF import (interface.md §1–§3): a robot description becomes a model spec, which every
+//! command then treats like a spec file (`triad check|describe|simulate|build robot.urdf`), and
+//! which `triad import` writes out as editable TOML.
+//!
+//! Semantics chosen (README, "Bring your robot"):
+//! - the root link: a root named `world` is the world (a `fixed` joint below it welds the base,
+//!   a `floating` joint frees it); any other root is the base, welded to the world by default
+//!   (as Pinocchio and MuJoCo do). `--floating-base` frees the base, `--fixed-base` welds a base
+//!   the URDF declares floating;
+//! - fixed joints merge the child's inertial into its parent's body (mass, centre of mass,
+//!   rotated inertia with the parallel-axis term; `--keep-fixed` keeps such links as bodies on
+//!   `fixed` joints); a link welded to the world carries nothing;
+//! - `<inertial>` `origin xyz rpy`: the centre of mass and the axes of the inertia tensor in the
+//!   link frame (the tensor is rotated into the link axes); a link without `<inertial>` is
+//!   massless;
+//! - revolute and continuous joints become actuated `revolute` joints (input `joint.J.tau`),
+//!   prismatic ones actuated `prismatic` joints (`joint.J.f`), planar ones `planar` joints;
+//!   `<axis>` defaults to `1 0 0`; `<dynamics damping>` is the joint's damping;
+//! - not modelled yet, each reported as a note: `<dynamics friction>` (inactive), position
+//!   limits (no joint stops yet), `<limit effort>` (no clamp yet), `<mimic>` (the joints are
+//!   independent);
+//! - names are made identifiers deterministically (`names`).
+//!
+//! Errors name the file, the line and the element (`robot.urdf: line 57: joint "elbow": child
+//! link "forearm" does not exist`), all at once.
+
+mod lower;
+mod names;
+mod robot;
+mod write;
+mod xml;
+
+pub use lower::Outcome;
+pub use write::to_toml;
+
+use crate::spec::{Problem, Spec, SpecErrors};
+
+/// How the base (the root link, or the link below a `world` root) is attached.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub enum Base {
+    /// As the URDF says: a bare root or a `fixed` joint to `world` welds, a `floating` joint frees.
+    #[default]
+    Auto,
+    /// Welded to the world, whatever the URDF says.
+    Fixed,
+    /// Free (a floating base), whatever the URDF says.
+    Floating,
+}
+
+/// The options of `triad import` (the defaults are those of every other command).
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub struct ImportOptions {
+    /// How the base is attached.
+    pub base: Base,
+    /// Keep links on fixed joints as (possibly massless) bodies instead of merging them.
+    pub keep_fixed: bool,
+}
+
+/// Reads URDF text into a spec. `origin` (the file name) prefixes every message and goes into
+/// the spec's description. The spec is not validated here (`Spec::from_path` does that).
+///
+/// # Errors
+/// Every problem found, each with its line and element.
+pub fn import(
+    text: &str,
+    origin: &str,
+    opts: &ImportOptions,
+) -> Result<(Spec, Outcome), SpecErrors> {
+    let fail = |problems: Vec<Problem>| SpecErrors {
+        origin: origin.to_string(),
+        problems,
+    };
+    let root = xml::parse(text)
+        .map_err(|(line, msg)| fail(vec![Problem::new(format!("line {line}"), msg)]))?;
+    let mut problems = Vec::new();
+    let robot = robot::robot(&root, &mut problems);
+    let name = std::path::Path::new(origin)
+        .file_name()
+        .map_or_else(|| origin.to_string(), |f| f.to_string_lossy().into_owned());
+    let (spec, outcome) = lower::spec(&robot, opts, &name, &mut problems);
+    if problems.is_empty() {
+        Ok((spec, outcome))
+    } else {
+        Err(fail(problems))
+    }
+}

@@ -1,0 +1,310 @@
+//! The URDF document as typed data: links with their inertials, joints with their frames, axes
+//! and dynamics. Every problem is collected (with the element's line), none stops the reading.
+
+use super::xml::Element;
+use crate::spec::Problem;
+
+/// A placement `origin xyz rpy` (m; rad, fixed-axis roll, pitch, yaw).
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub(crate) struct Pose {
+    pub xyz: [f64; 3],
+    pub rpy: [f64; 3],
+}
+
+/// `<inertial>`: the centre-of-mass frame in the link frame, the mass (kg) and the inertia
+/// about the centre of mass in that frame (kg·m²).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub(crate) struct Inertial {
+    pub origin: Pose,
+    pub mass: f64,
+    /// `[ixx, iyy, izz, ixy, ixz, iyz]`.
+    pub inertia: [f64; 6],
+}
+
+/// `<link>`.
+#[derive(Clone, Debug)]
+pub(crate) struct Link {
+    pub name: String,
+    pub line: usize,
+    /// None: a link without `<inertial>` (massless).
+    pub inertial: Option<Inertial>,
+}
+
+/// URDF joint types.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub(crate) enum JointType {
+    Revolute,
+    Continuous,
+    Prismatic,
+    Fixed,
+    Floating,
+    Planar,
+}
+
+/// `<limit>` (absent attributes as None).
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub(crate) struct Limit {
+    pub lower: Option<f64>,
+    pub upper: Option<f64>,
+    pub effort: Option<f64>,
+}
+
+/// `<joint>`.
+#[derive(Clone, Debug)]
+pub(crate) struct Joint {
+    pub name: String,
+    pub line: usize,
+    pub kind: JointType,
+    pub parent: String,
+    pub child: String,
+    pub origin: Pose,
+    /// In the joint frame (default `1 0 0`), as written (not normalised).
+    pub axis: [f64; 3],
+    pub damping: f64,
+    pub friction: f64,
+    pub limit: Option<Limit>,
+    /// The joint this one mimics.
+    pub mimic: Option<String>,
+}
+
+/// The robot: its name, links and joints in document order.
+#[derive(Clone, Debug, Default)]
+pub(crate) struct Robot {
+    pub name: String,
+    pub links: Vec<Link>,
+    pub joints: Vec<Joint>,
+}
+
+/// Where a problem is: `line L: <what>`.
+pub(crate) fn at(line: usize, what: &str) -> String {
+    format!("line {line}: {what}")
+}
+
+/// Reads the numbers of attribute `key` of `e` (`n` of them); the default when absent.
+fn numbers<const N: usize>(
+    e: &Element,
+    key: &str,
+    default: [f64; N],
+    whose: &str,
+    problems: &mut Vec<Problem>,
+) -> [f64; N] {
+    let Some(text) = e.attr(key) else {
+        return default;
+    };
+    let parsed: Result<Vec<f64>, _> = text.split_whitespace().map(str::parse::<f64>).collect();
+    let here = at(e.line, whose);
+    match parsed {
+        Ok(v) if v.len() == N && v.iter().all(|x| x.is_finite()) => std::array::from_fn(|i| v[i]),
+        Ok(v) if v.len() == N => {
+            problems.push(Problem::new(
+                here,
+                format!("<{}> {key}=\"{text}\": numbers must be finite", e.name),
+            ));
+            default
+        }
+        Ok(v) => {
+            problems.push(Problem::new(
+                here,
+                format!(
+                    "<{}> {key}=\"{text}\": expected {N} numbers, found {}",
+                    e.name,
+                    v.len()
+                ),
+            ));
+            default
+        }
+        Err(_) => {
+            problems.push(Problem::new(
+                here,
+                format!("<{}> {key}=\"{text}\": not a list of numbers", e.name),
+            ));
+            default
+        }
+    }
+}
+
+/// One number attribute (`None` when absent).
+fn number(e: &Element, key: &str, whose: &str, problems: &mut Vec<Problem>) -> Option<f64> {
+    e.attr(key)?;
+    Some(numbers::<1>(e, key, [0.0], whose, problems)[0])
+}
+
+/// `<origin>` child of `e` (identity when absent).
+fn origin(e: &Element, whose: &str, problems: &mut Vec<Problem>) -> Pose {
+    e.first("origin").map_or_else(Pose::default, |o| Pose {
+        xyz: numbers(o, "xyz", [0.0; 3], whose, problems),
+        rpy: numbers(o, "rpy", [0.0; 3], whose, problems),
+    })
+}
+
+fn inertial(e: &Element, whose: &str, problems: &mut Vec<Problem>) -> Inertial {
+    let mass = match e.first("mass") {
+        Some(m) => match number(m, "value", whose, problems) {
+            Some(v) => v,
+            None => {
+                problems.push(Problem::new(at(m.line, whose), "<mass> needs value=\"…\""));
+                0.0
+            }
+        },
+        None => {
+            problems.push(Problem::new(at(e.line, whose), "<inertial> has no <mass>"));
+            0.0
+        }
+    };
+    if mass < 0.0 {
+        problems.push(Problem::new(
+            at(e.line, whose),
+            format!("mass {mass} is negative"),
+        ));
+    }
+    let mut inertia = [0.0; 6];
+    match e.first("inertia") {
+        Some(i) => {
+            for (k, key) in ["ixx", "iyy", "izz", "ixy", "ixz", "iyz"]
+                .iter()
+                .enumerate()
+            {
+                inertia[k] = number(i, key, whose, problems).unwrap_or(0.0);
+            }
+        }
+        None if mass > 0.0 => problems.push(Problem::new(
+            at(e.line, whose),
+            "<inertial> has a mass but no <inertia>",
+        )),
+        None => {}
+    }
+    Inertial {
+        origin: origin(e, whose, problems),
+        mass,
+        inertia,
+    }
+}
+
+fn joint_type(s: &str) -> Option<JointType> {
+    Some(match s {
+        "revolute" => JointType::Revolute,
+        "continuous" => JointType::Continuous,
+        "prismatic" => JointType::Prismatic,
+        "fixed" => JointType::Fixed,
+        "floating" => JointType::Floating,
+        "planar" => JointType::Planar,
+        _ => return None,
+    })
+}
+
+fn joint(e: &Element, problems: &mut Vec<Problem>) -> Option<Joint> {
+    let name = e.attr("name").unwrap_or_default().to_string();
+    let whose = format!("joint \"{name}\"");
+    if name.is_empty() {
+        problems.push(Problem::new(at(e.line, "<joint>"), "has no name"));
+    }
+    let kind = match e.attr("type") {
+        Some(t) => joint_type(t).or_else(|| {
+            problems.push(Problem::new(at(e.line, &whose), format!("unknown joint type \"{t}\"; URDF types are revolute, continuous, prismatic, fixed, floating, planar")));
+            None
+        }),
+        None => {
+            problems.push(Problem::new(at(e.line, &whose), "has no type"));
+            None
+        }
+    };
+    let link_of = |tag: &str, problems: &mut Vec<Problem>| match e.first(tag) {
+        Some(p) => match p.attr("link") {
+            Some(l) => l.to_string(),
+            None => {
+                problems.push(Problem::new(
+                    at(p.line, &whose),
+                    format!("<{tag}> has no link"),
+                ));
+                String::new()
+            }
+        },
+        None => {
+            problems.push(Problem::new(at(e.line, &whose), format!("has no <{tag}>")));
+            String::new()
+        }
+    };
+    let parent = link_of("parent", problems);
+    let child = link_of("child", problems);
+    let axis = e.first("axis").map_or([1.0, 0.0, 0.0], |a| {
+        numbers(a, "xyz", [1.0, 0.0, 0.0], &whose, problems)
+    });
+    let moving = matches!(
+        kind,
+        Some(
+            JointType::Revolute | JointType::Continuous | JointType::Prismatic | JointType::Planar
+        )
+    );
+    if moving && axis.iter().all(|&x| x == 0.0) {
+        problems.push(Problem::new(at(e.line, &whose), "<axis> has zero length"));
+    }
+    let (damping, friction) = e.first("dynamics").map_or((0.0, 0.0), |d| {
+        (
+            number(d, "damping", &whose, problems).unwrap_or(0.0),
+            number(d, "friction", &whose, problems).unwrap_or(0.0),
+        )
+    });
+    if damping < 0.0 || friction < 0.0 {
+        problems.push(Problem::new(
+            at(e.line, &whose),
+            "<dynamics> damping and friction must be ≥ 0",
+        ));
+    }
+    let limit = e.first("limit").map(|l| Limit {
+        lower: number(l, "lower", &whose, problems),
+        upper: number(l, "upper", &whose, problems),
+        effort: number(l, "effort", &whose, problems),
+    });
+    let mimic = e
+        .first("mimic")
+        .and_then(|m| m.attr("joint"))
+        .map(String::from);
+    let origin = origin(e, &whose, problems);
+    Some(Joint {
+        name,
+        line: e.line,
+        kind: kind?,
+        parent,
+        child,
+        origin,
+        axis,
+        damping,
+        friction,
+        limit,
+        mimic,
+    })
+}
+
+/// Reads the robot from the root element.
+pub(crate) fn robot(root: &Element, problems: &mut Vec<Problem>) -> Robot {
+    if root.name != "robot" {
+        problems.push(Problem::new(
+            at(root.line, &format!("<{}>", root.name)),
+            "the root element of a URDF is <robot>",
+        ));
+    }
+    let mut robot = Robot {
+        name: root.attr("name").unwrap_or("robot").to_string(),
+        ..Robot::default()
+    };
+    for e in root.all("link") {
+        let name = e.attr("name").unwrap_or_default().to_string();
+        if name.is_empty() {
+            problems.push(Problem::new(at(e.line, "<link>"), "has no name"));
+            continue;
+        }
+        let whose = format!("link \"{name}\"");
+        let inertial = e.first("inertial").map(|i| inertial(i, &whose, problems));
+        robot.links.push(Link {
+            name,
+            line: e.line,
+            inertial,
+        });
+    }
+    for e in root.all("joint") {
+        if let Some(j) = joint(e, problems) {
+            robot.joints.push(j);
+        }
+    }
+    robot
+}

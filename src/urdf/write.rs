@@ -1,0 +1,65 @@
+//! The imported spec as editable TOML: the spec's own serialisation (numbers in shortest
+//! round-trip form, so reading it back gives the same spec and the same FMU), with a header
+//! and a comment before every body and joint naming the URDF elements it came from.
+
+use super::lower::Outcome;
+use crate::spec::Spec;
+
+/// TOML text of `spec` with the import's comments and notes.
+///
+/// # Errors
+/// A message if the spec cannot be serialised (not for specs made by the importer).
+pub fn to_toml(spec: &Spec, outcome: &Outcome) -> Result<String, String> {
+    let body = toml::to_string(spec).map_err(|e| e.to_string())?;
+    let mut out = String::new();
+    out.push_str(&format!("# {}\n", spec.description));
+    out.push_str(
+        "# Written by `triad import`; edit freely: `triad build` on this file and on the URDF\n",
+    );
+    out.push_str("# give the same FMU as long as nothing is changed.\n");
+    for n in &outcome.notes {
+        out.push_str(&format!("# note: {n}\n"));
+    }
+    out.push('\n');
+    let (mut b, mut j) = (0, 0);
+    for line in body.lines() {
+        match line.trim() {
+            "[[body]]" => {
+                if let Some(s) = spec.body.get(b) {
+                    out.push('\n');
+                    let links = outcome
+                        .merged
+                        .iter()
+                        .find(|(id, _)| *id == s.name)
+                        .map(|(_, l)| l.clone())
+                        .unwrap_or_default();
+                    match links.as_slice() {
+                        [one] => out.push_str(&format!("# URDF link \"{one}\"\n")),
+                        [first, rest @ ..] => out.push_str(&format!(
+                            "# URDF link \"{first}\" with the links merged into it by fixed joints: {}\n",
+                            rest.iter().map(|l| format!("\"{l}\"")).collect::<Vec<_>>().join(", ")
+                        )),
+                        [] => {}
+                    }
+                }
+                b += 1;
+            }
+            "[[joint]]" => {
+                if let Some(s) = spec.joint.get(j) {
+                    out.push('\n');
+                    let original = outcome
+                        .renamed
+                        .iter()
+                        .find(|(kind, id, _)| *kind == "joint" && *id == s.name)
+                        .map_or(s.name.as_str(), |(_, _, o)| o.as_str());
+                    out.push_str(&format!("# URDF joint \"{original}\"\n"));
+                }
+                j += 1;
+            }
+            _ => {}
+        }
+        out.push_str(line);
+        out.push('\n');
+    }
+    Ok(out)
+}
