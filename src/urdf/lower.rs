@@ -13,8 +13,8 @@
 use std::collections::HashMap;
 
 use super::names::Namer;
+use super::options::{Base, ImportOptions};
 use super::robot::{at, Inertial, JointType, Pose, Robot};
-use super::{Base, ImportOptions};
 use crate::math::{matrix_to_rpy, rpy_to_matrix, Mat3, Vec3};
 use crate::spec::{
     BodySpec, InertiaSpec, JointKind, JointSpec, OrientationSpec, OriginSpec, Problem, Spec,
