@@ -1,0 +1,22 @@
+//! The options of URDF import (`triad import`; the defaults are those of every other command).
+
+/// How the base (the root link, or the link below a `world` root) is attached.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub enum Base {
+    /// As the URDF says: a bare root or a `fixed` joint to `world` welds, a `floating` joint frees.
+    #[default]
+    Auto,
+    /// Welded to the world, whatever the URDF says.
+    Fixed,
+    /// Free (a floating base), whatever the URDF says.
+    Floating,
+}
+
+/// The options of `triad import` (the defaults are those of every other command).
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub struct ImportOptions {
+    /// How the base is attached.
+    pub base: Base,
+    /// Keep links on fixed joints as (possibly massless) bodies instead of merging them.
+    pub keep_fixed: bool,
+}
