@@ -146,7 +146,8 @@ pub fn import(robot: &Path, output: Option<&Path>, opts: &ImportOptions) -> Resu
     }
     let text = std::fs::read_to_string(robot).map_err(|e| format!("{name}: {e}"))?;
     let (spec, outcome) = triad::urdf::import(&text, &name, opts)?;
-    spec.validate(&name)?;
+    spec.validate(&name)
+        .map_err(|e| triad::urdf::in_urdf_terms(e, &spec, &outcome))?;
     let toml = triad::urdf::to_toml(&spec, &outcome).map_err(|e| format!("{name}: {e}"))?;
     match output {
         Some(out) => {

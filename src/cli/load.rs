@@ -14,7 +14,8 @@ pub fn load_noted(model: &str, opts: &ImportOptions) -> Result<(Spec, Vec<String
         let text = std::fs::read_to_string(path)
             .map_err(|e| SpecErrors::single(model, "", format!("cannot read the file: {e}")))?;
         let (spec, outcome) = urdf::import(&text, model, opts)?;
-        spec.validate(model)?;
+        spec.validate(model)
+            .map_err(|e| urdf::in_urdf_terms(e, &spec, &outcome))?;
         return Ok((spec, outcome.notes));
     }
     load(model).map(|s| (s, Vec::new()))

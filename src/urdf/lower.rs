@@ -98,6 +98,23 @@ fn placed(inertial: &Inertial, frame: &Iso) -> (f64, Vec3, Mat3) {
     (inertial.mass, total.p, jc)
 }
 
+/// `j` with the round-off of the file's numbers removed: entries below `1e-12 · max(|J|, m·1 m²)`
+/// of a tensor that is otherwise zero become zero, and principal moments negative by less than
+/// that become zero (real files write `ixz="2.4e-35"` for a point mass). Anything larger is
+/// left for validation to report.
+fn clean(j: Mat3, m: f64) -> Mat3 {
+    let tiny = 1e-12 * j.amax().max(m);
+    if j.amax() <= tiny {
+        return Mat3::zeros();
+    }
+    let eig = j.symmetric_eigen();
+    if eig.eigenvalues.min() >= 0.0 || eig.eigenvalues.min() < -tiny {
+        return j;
+    }
+    let d = Mat3::from_diagonal(&eig.eigenvalues.map(|x| x.max(0.0)));
+    eig.eigenvectors * d * eig.eigenvectors.transpose()
+}
+
 /// Mass, centre of mass and inertia about it of the merged parts.
 fn merge(parts: &Parts) -> (f64, Vec3, Mat3) {
     match parts.as_slice() {
@@ -416,6 +433,15 @@ pub(crate) fn spec(
             });
         }
     }
+    if spec.body.is_empty() && problems.is_empty() {
+        problems.push(Problem::new(
+            "",
+            format!(
+                "nothing moves: every link is welded to the world through root link '{}'; import with --floating-base to free it",
+                robot.links[root].name
+            ),
+        ));
+    }
     // the inertials, each in its host body's frame
     for (l, link) in robot.links.iter().enumerate() {
         let (Some(h), Some(inertial)) = (host[l], link.inertial.as_ref()) else {
@@ -427,6 +453,7 @@ pub(crate) fn spec(
     }
     for (b, p) in parts.iter().enumerate() {
         let (m, c, j) = merge(p);
+        let j = clean(j, m);
         let body = &mut spec.body[b];
         body.mass = m;
         body.com = [c.x, c.y, c.z];

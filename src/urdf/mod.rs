@@ -33,7 +33,7 @@ mod xml;
 
 pub use lower::Outcome;
 pub use options::{Base, ImportOptions};
-pub use write::to_toml;
+pub use write::{in_urdf_terms, to_toml};
 
 use crate::spec::{Problem, Spec, SpecErrors};
 

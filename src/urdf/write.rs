@@ -63,3 +63,47 @@ pub fn to_toml(spec: &Spec, outcome: &Outcome) -> Result<String, String> {
     }
     Ok(out)
 }
+
+/// Problems of an imported spec (validated after import) told in the URDF's terms: the path
+/// `body[i]…` becomes `link "<URDF name>" (body[i]…)`, `joint[i]…` becomes
+/// `joint "<URDF name>" (joint[i]…)`.
+#[must_use]
+pub fn in_urdf_terms(
+    mut errors: crate::spec::SpecErrors,
+    spec: &Spec,
+    outcome: &Outcome,
+) -> crate::spec::SpecErrors {
+    for p in &mut errors.problems {
+        let Some((kind, rest)) = p.path.split_once('[') else {
+            continue;
+        };
+        let Some((index, _)) = rest.split_once(']') else {
+            continue;
+        };
+        let Ok(i) = index.parse::<usize>() else {
+            continue;
+        };
+        let original = match kind {
+            "body" => spec.body.get(i).and_then(|b| {
+                outcome
+                    .merged
+                    .iter()
+                    .find(|(id, _)| *id == b.name)
+                    .and_then(|(_, links)| links.first().cloned())
+            }),
+            "joint" => spec.joint.get(i).map(|j| {
+                outcome
+                    .renamed
+                    .iter()
+                    .find(|(k, id, _)| *k == "joint" && *id == j.name)
+                    .map_or_else(|| j.name.clone(), |(_, _, o)| o.clone())
+            }),
+            _ => None,
+        };
+        if let Some(name) = original {
+            let what = if kind == "body" { "link" } else { "joint" };
+            p.path = format!("{what} \"{name}\" ({})", p.path);
+        }
+    }
+    errors
+}
