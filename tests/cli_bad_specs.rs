@@ -2,8 +2,10 @@
 //! the expected `file: path: reason` line, a non-zero exit and no panic; `triad simulate -o`
 //! on it writes no file. A new bad spec must be added to the table below.
 
+mod common;
+use common::triad;
+
 use std::path::{Path, PathBuf};
-use std::process::{Command, Output};
 
 /// (file, expected message lines after "file: ").
 const CASES: &[(&str, &[&str])] = &[
@@ -47,14 +49,6 @@ const CASES: &[(&str, &[&str])] = &[
 
 fn dir() -> PathBuf {
     Path::new(env!("CARGO_MANIFEST_DIR")).join("tests/data/bad_specs")
-}
-
-fn triad(args: &[&str], cwd: &Path) -> Output {
-    Command::new(env!("CARGO_BIN_EXE_triad"))
-        .args(args)
-        .current_dir(cwd)
-        .output()
-        .expect("run triad")
 }
 
 #[test]

@@ -2,16 +2,10 @@
 //! the name of a shipped model; `check` prints `ok`, a summary and the model's notes, and
 //! writes nothing.
 
-use std::path::Path;
-use std::process::Command;
+mod common;
+use common::triad;
 
-fn triad(args: &[&str], cwd: &Path) -> std::process::Output {
-    Command::new(env!("CARGO_BIN_EXE_triad"))
-        .args(args)
-        .current_dir(cwd)
-        .output()
-        .unwrap()
-}
+use std::path::Path;
 
 #[test]
 fn file_folder_and_shipped_name_are_the_same_model() {

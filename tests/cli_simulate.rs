@@ -4,8 +4,10 @@
 //! driving `joint.*.tau`, `system.energy - system.work` is constant to 1e-9 (the discrete
 //! work–energy balance of the energy–momentum scheme). Errors write no file.
 
+mod common;
+use common::triad;
+
 use std::path::Path;
-use std::process::{Command, Output};
 
 use triad::sim::Simulation;
 use triad::spec::{bundled, Format, Spec};
@@ -16,14 +18,6 @@ fn tol(x: f64) -> f64 {
         .ok()
         .and_then(|s| s.parse().ok())
         .unwrap_or(1.0)
-}
-
-fn triad(args: &[&str], cwd: &Path) -> Output {
-    Command::new(env!("CARGO_BIN_EXE_triad"))
-        .args(args)
-        .current_dir(cwd)
-        .output()
-        .unwrap()
 }
 
 /// Header and rows of a CSV written by `simulate`.

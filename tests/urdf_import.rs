@@ -4,20 +4,11 @@
 //! answered with the file, the line and the element, a non-zero exit and no file written.
 
 mod common;
-use common::settings;
+use common::{settings, triad};
 use std::path::Path;
-use std::process::Command;
 use triad::math::{rpy_to_matrix, Mat3, Vec3};
 use triad::mechanics::{step, Model, State};
 use triad::urdf::{import, Base, ImportOptions};
-
-fn triad(args: &[&str], cwd: &Path) -> std::process::Output {
-    Command::new(env!("CARGO_BIN_EXE_triad"))
-        .args(args)
-        .current_dir(cwd)
-        .output()
-        .unwrap()
-}
 
 fn arm_path() -> std::path::PathBuf {
     Path::new(env!("CARGO_MANIFEST_DIR")).join("tests/data/urdf/arm.urdf")

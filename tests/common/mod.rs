@@ -19,6 +19,19 @@ pub const KINDS: [JointType; 7] = [
     JointType::Fixed,
 ];
 
+/// Runs the `triad` binary with `args` in `cwd` (integration tests only: the binary's path is
+/// known to them, not to the benches and examples that share this module).
+pub fn triad(args: &[&str], cwd: &std::path::Path) -> std::process::Output {
+    let Some(bin) = option_env!("CARGO_BIN_EXE_triad") else {
+        panic!("the triad binary is known to integration tests only");
+    };
+    std::process::Command::new(bin)
+        .args(args)
+        .current_dir(cwd)
+        .output()
+        .expect("run triad")
+}
+
 /// Scales a tolerance by the env knob `TRIAD_TOL_SCALE` (default 1).
 #[must_use]
 pub fn tol(x: f64) -> f64 {
