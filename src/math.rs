@@ -36,8 +36,9 @@ pub fn rpy_to_matrix(rpy: &Vec3) -> Mat3 {
 /// `[−π/2, π/2]`; at pitch ±π/2, where only roll ∓ yaw is defined, roll is 0).
 #[must_use]
 pub fn matrix_to_rpy(r: &Mat3) -> Vec3 {
-    let pitch = (-r[(2, 0)]).atan2(r[(0, 0)].hypot(r[(1, 0)]));
-    if r[(0, 0)].hypot(r[(1, 0)]) < 1e-12 {
+    let cp = r[(0, 0)].hypot(r[(1, 0)]);
+    let pitch = (-r[(2, 0)]).atan2(cp);
+    if cp < 1e-12 {
         return Vec3::new(0.0, pitch, (-r[(0, 1)]).atan2(r[(1, 1)]));
     }
     Vec3::new(

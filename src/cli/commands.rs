@@ -6,7 +6,7 @@ use triad::mechanics::Model;
 use triad::variables::{Causality, VarType, VariableTable};
 
 use super::error::CliError;
-use super::load::{is_urdf, load, load_noted};
+use super::load::{is_urdf, load, load_noted, load_urdf};
 use triad::urdf::ImportOptions;
 
 /// Validates MODEL; prints `ok`, a summary and the mechanics' notes. Writes nothing.
@@ -144,10 +144,7 @@ pub fn import(robot: &Path, output: Option<&Path>, opts: &ImportOptions) -> Resu
     if !is_urdf(robot) {
         return Err(format!("{name}: import reads a .urdf file").into());
     }
-    let text = std::fs::read_to_string(robot).map_err(|e| format!("{name}: {e}"))?;
-    let (spec, outcome) = triad::urdf::import(&text, &name, opts)?;
-    spec.validate(&name)
-        .map_err(|e| triad::urdf::in_urdf_terms(e, &spec, &outcome))?;
+    let (spec, outcome) = load_urdf(&name, opts)?;
     let toml = triad::urdf::to_toml(&spec, &outcome).map_err(|e| format!("{name}: {e}"))?;
     match output {
         Some(out) => {

@@ -9,16 +9,21 @@ use triad::urdf::{self, ImportOptions};
 /// or, when no such file exists and MODEL has no extension, the shipped model of that name.
 /// Returns the validated spec and the import's notes (none for a spec).
 pub fn load_noted(model: &str, opts: &ImportOptions) -> Result<(Spec, Vec<String>), SpecErrors> {
-    let path = Path::new(model);
-    if is_urdf(path) {
-        let text = std::fs::read_to_string(path)
-            .map_err(|e| SpecErrors::single(model, "", format!("cannot read the file: {e}")))?;
-        let (spec, outcome) = urdf::import(&text, model, opts)?;
-        spec.validate(model)
-            .map_err(|e| urdf::in_urdf_terms(e, &spec, &outcome))?;
-        return Ok((spec, outcome.notes));
+    if is_urdf(Path::new(model)) {
+        return load_urdf(model, opts).map(|(spec, outcome)| (spec, outcome.notes));
     }
     load(model).map(|s| (s, Vec::new()))
+}
+
+/// Reads, imports and validates the URDF `model` (problems of the imported spec in the URDF's
+/// terms); the spec and what the import says of it.
+pub fn load_urdf(model: &str, opts: &ImportOptions) -> Result<(Spec, urdf::Outcome), SpecErrors> {
+    let text = std::fs::read_to_string(model)
+        .map_err(|e| SpecErrors::single(model, "", format!("cannot read the file: {e}")))?;
+    let (spec, outcome) = urdf::import(&text, model, opts)?;
+    spec.validate(model)
+        .map_err(|e| urdf::in_urdf_terms(e, &spec, &outcome))?;
+    Ok((spec, outcome))
 }
 
 /// True for a `.urdf` path.

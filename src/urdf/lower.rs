@@ -68,8 +68,7 @@ impl Iso {
     }
 }
 
-/// Where a link ends up: which body (None: the world) and its frame in that body's frame;
-/// `written` when that frame is exactly the link's own joint origin (nothing composed).
+/// Where a link ends up: which body (None: the world) and its frame in that body's frame.
 #[derive(Clone, Copy)]
 struct Host {
     body: Option<usize>,
@@ -144,7 +143,7 @@ pub struct Outcome {
     pub notes: Vec<String>,
     /// `(kind, identifier, URDF name)` for every body and joint whose name changed.
     pub renamed: Vec<(&'static str, String, String)>,
-    /// `(identifier, URDF link names merged into it)` per body.
+    /// `(identifier, URDF link names merged into it)` per body, in the spec's body order.
     pub merged: Vec<(String, Vec<String>)>,
 }
 

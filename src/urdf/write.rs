@@ -25,14 +25,8 @@ pub fn to_toml(spec: &Spec, outcome: &Outcome) -> Result<String, String> {
     for line in body.lines() {
         match line.trim() {
             "[[body]]" => {
-                if let Some(s) = spec.body.get(b) {
+                if let Some((_, links)) = outcome.merged.get(b) {
                     out.push('\n');
-                    let links = outcome
-                        .merged
-                        .iter()
-                        .find(|(id, _)| *id == s.name)
-                        .map(|(_, l)| l.clone())
-                        .unwrap_or_default();
                     match links.as_slice() {
                         [one] => out.push_str(&format!("# URDF link \"{one}\"\n")),
                         [first, rest @ ..] => out.push_str(&format!(
@@ -84,13 +78,10 @@ pub fn in_urdf_terms(
             continue;
         };
         let original = match kind {
-            "body" => spec.body.get(i).and_then(|b| {
-                outcome
-                    .merged
-                    .iter()
-                    .find(|(id, _)| *id == b.name)
-                    .and_then(|(_, links)| links.first().cloned())
-            }),
+            "body" => outcome
+                .merged
+                .get(i)
+                .and_then(|(_, links)| links.first().cloned()),
             "joint" => spec.joint.get(i).map(|j| {
                 outcome
                     .renamed

@@ -14,6 +14,7 @@ use super::error::ModelError;
 use super::joint::{Dof, JointGeom};
 use super::runtime::{
     covers, euler_tensor, exact_jacobian, BodyRt, DofRt, InputSlot, JointRt, Model, TurnRt,
+    ZERO_MOMENT,
 };
 use super::sparse_row::SparseRow;
 use crate::math::{matrix_to_quat, quat_to_matrix, Vec3};
@@ -154,7 +155,7 @@ fn mass_data(def: &ModelDef) -> Result<(Vec<BodyRt>, f64), ModelError> {
             com: b.com,
             fs: 0.0,
             ms: 1.0 / (e.trace().abs() + 0.5 * e.norm()),
-            singular: b.mass == 0.0 || eig.min() <= 1e-12 * eig.amax(),
+            singular: b.mass == 0.0 || eig.min() <= ZERO_MOMENT * eig.amax(),
         });
     }
     let lc = bodies

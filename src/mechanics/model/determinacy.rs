@@ -24,7 +24,7 @@ use super::body::rotation;
 use super::error::ModelError;
 use super::joint::JointGeom;
 use super::loops::twist_jacobian;
-use super::runtime::Model;
+use super::runtime::{Model, ZERO_MOMENT};
 use crate::math::{Mat3, Vec3};
 
 /// Singular values below this (rows of unit length) count as zero.
@@ -53,7 +53,7 @@ fn null_dirs(b: usize, m: f64, j: &Mat3, rot: &Mat3, out: &mut Vec<NullDir>) {
     let eig = j.symmetric_eigen();
     let big = eig.eigenvalues.amax();
     for k in 0..3 {
-        if eig.eigenvalues[k] <= 1e-12 * big {
+        if eig.eigenvalues[k] <= ZERO_MOMENT * big {
             out.push(NullDir {
                 body: b,
                 linear: false,
@@ -115,14 +115,7 @@ pub(crate) fn check(model: &Model) -> Result<(), ModelError> {
     let nr = rows.len().max(k);
     let an = DMatrix::from_fn(nr, k, |i, j| rows.get(i).map_or(0.0, |r| r[j]));
     let svd = an.svd(false, true);
-    let (imin, smin) =
-        svd.singular_values
-            .iter()
-            .enumerate()
-            .fold(
-                (0, f64::INFINITY),
-                |acc, (i, &s)| if s < acc.1 { (i, s) } else { acc },
-            );
+    let (imin, smin) = svd.singular_values.argmin();
     if smin > TOL {
         return Ok(());
     }

@@ -62,17 +62,10 @@ impl ProjWork {
     /// Workspace for `model`.
     pub fn new(model: &Model) -> Self {
         let nb = model.bodies.len();
-        let blocks = (0..nb)
-            // every block factored whole: the body block `diag(m I, J_s)` plus the children's
-            // updates is ill-conditioned below a light body (singular for a massless one) while
-            // the supernode is not, and eliminating through it would cost accuracy ∝ 1/mass
-            .map(|b| {
-                let mut k =
-                    Block::new(6 + model.tree_joint[b].map_or(0, |j| model.joints[j].rows.len()));
-                k.whole = true;
-                k
-            })
-            .collect();
+        // every block factored whole: the body block `diag(m I, J_s)` plus the children's
+        // updates is ill-conditioned below a light body (singular for a massless one) while
+        // the supernode is not, and eliminating through it would cost accuracy ∝ 1/mass
+        let blocks = model.tree_blocks(|_| true);
         let nd = if model.dense { 6 * nb + model.nrows } else { 0 };
         Self {
             blocks,

@@ -10,6 +10,7 @@ use super::joint::JointGeom;
 use super::sparse_row::SparseRow;
 use crate::math::{Mat3, Vec3};
 use crate::mechanics::linalg::border::Border;
+use crate::mechanics::linalg::tree::Block;
 
 /// One scalar input of the model, in the order of `State::inputs`.
 ///
@@ -46,6 +47,10 @@ pub enum InputSlot {
         i: usize,
     },
 }
+
+/// A principal moment at most this fraction of a body's largest counts as zero (the body's mass
+/// matrix is then singular, `BodyRt::singular`; `determinacy` finds its null directions).
+pub(crate) const ZERO_MOMENT: f64 = 1e-12;
 
 /// Mass data of one body (body axes, about the centre of mass).
 #[derive(Clone, Debug)]
@@ -250,6 +255,19 @@ impl Model {
 }
 
 impl Model {
+    /// One empty tree block per body (`6 +` the rows of its tree joint), factored whole where
+    /// `whole(b)` says so (`linalg::tree::Block::whole`).
+    pub(crate) fn tree_blocks(&self, whole: impl Fn(usize) -> bool) -> Vec<Block> {
+        (0..self.bodies.len())
+            .map(|b| {
+                let mut k =
+                    Block::new(6 + self.tree_joint[b].map_or(0, |j| self.joints[j].rows.len()));
+                k.whole = whole(b);
+                k
+            })
+            .collect()
+    }
+
     /// The border of the model's loop-closing joints (those that are not the tree joint of
     /// their child) for the bordered tree solve; empty for a tree.
     pub(crate) fn border(&self) -> Border {

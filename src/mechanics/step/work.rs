@@ -167,15 +167,8 @@ impl Work {
     pub fn new(model: &Model) -> Self {
         let nb = model.bodies.len();
         let nr = model.nrows;
-        let blocks = (0..nb)
-            .map(|b| {
-                let mut k =
-                    Block::new(6 + model.tree_joint[b].map_or(0, |j| model.joints[j].rows.len()));
-                // a body without mass or inertia has a singular body block `K`
-                k.whole = model.bodies[b].singular;
-                k
-            })
-            .collect();
+        // a body without mass or inertia has a singular body block `K`
+        let blocks = model.tree_blocks(|b| model.bodies[b].singular);
         let nd = if model.dense { 6 * nb + nr } else { 0 };
         Self {
             qn: model.q0.clone(),
