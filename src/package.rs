@@ -124,7 +124,7 @@ pub fn documentation(meta: &Meta, table: &VariableTable) -> String {
 /// A spec that does not lower, or a zip error.
 pub fn fmu_bytes(spec: &Spec, cdylib: &[u8]) -> Result<Vec<u8>, Box<dyn Error>> {
     let (def, settings) = spec.lower()?;
-    let table = contract::table(&def, &settings);
+    let table = contract::table(spec, &def, &settings);
     let meta = Meta::new(spec, &settings, &table);
     let xml = write_model_description(&table, &meta)?;
     let (_, ext) = cdylib_names();

@@ -84,6 +84,7 @@ fn model(bodies: Vec<BodyDef>, joints: Vec<JointDef>, gravity: Vec3) -> ModelDef
         joints,
         loads: vec![],
         free_bodies: vec![],
+        sites: vec![],
     }
 }
 

@@ -103,6 +103,7 @@ fn floating_tree(gravity: Vec3) -> ModelDef {
             velocity: Vec3::new(0.05, 0.02, -0.03),
             angular_velocity: Vec3::new(0.1, -0.2, 0.15),
         }],
+        sites: vec![],
     }
 }
 

@@ -15,7 +15,7 @@ use triad::xml::{unknown_units, write_model_description, Meta};
 
 fn generate(spec: &Spec) -> String {
     let (def, settings) = spec.lower().unwrap();
-    let table = contract::table(&def, &settings);
+    let table = contract::table(spec, &def, &settings);
     assert!(
         unknown_units(&table).is_empty(),
         "units without base units: {:?}",

@@ -50,6 +50,7 @@ fn top(w_world: Vec3) -> ModelDef {
         joints: vec![j],
         loads: vec![],
         free_bodies: vec![],
+        sites: vec![],
     }
 }
 

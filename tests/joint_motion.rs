@@ -61,6 +61,7 @@ fn pair(kind: JointType) -> ModelDef {
             velocity: Vec3::new(0.1, -0.2, 0.05),
             angular_velocity: Vec3::new(0.5, -0.3, 1.2),
         }],
+        sites: vec![],
     }
 }
 
@@ -126,6 +127,7 @@ fn angles_unwrap_from_the_given_initial_value() {
         joints: vec![j],
         loads: vec![],
         free_bodies: vec![],
+        sites: vec![],
     };
     let (m, mut s) = build(&def, settings(0.01, 2));
     assert!(

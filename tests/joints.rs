@@ -110,6 +110,7 @@ fn setup(kind: JointType, world_parent: bool, seed: u64) -> ModelDef {
         joints: vec![joint],
         loads: vec![],
         free_bodies: vec![free],
+        sites: vec![],
     }
 }
 

@@ -70,6 +70,7 @@ fn chain(m: f64) -> ModelDef {
         joints,
         loads: vec![],
         free_bodies: vec![],
+        sites: vec![],
     }
 }
 

@@ -93,6 +93,7 @@ fn four_bar(th: f64, rates: [f64; 3]) -> ModelDef {
         ],
         loads: vec![],
         free_bodies: vec![],
+        sites: vec![],
     }
 }
 

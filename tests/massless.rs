@@ -83,6 +83,7 @@ fn wrist_with_yoke() -> ModelDef {
         ],
         loads: vec![],
         free_bodies: vec![],
+        sites: vec![],
     }
 }
 
@@ -103,6 +104,7 @@ fn wrist_universal() -> ModelDef {
         joints: vec![shoulder(), actuated(u, &[0.3, -0.4], &[1.2, -0.7])],
         loads: vec![],
         free_bodies: vec![],
+        sites: vec![],
     }
 }
 
@@ -172,6 +174,7 @@ fn welded_chain(merged: bool) -> ModelDef {
             joints: vec![j1, j2, j3],
             loads: vec![],
             free_bodies: vec![],
+            sites: vec![],
         };
     }
     bodies.push(body("flange", 0.0, Vec3::zeros(), Mat3::zeros()));
@@ -202,6 +205,7 @@ fn welded_chain(merged: bool) -> ModelDef {
         joints: vec![j1, weld, j2, j3, tool],
         loads: vec![],
         free_bodies: vec![],
+        sites: vec![],
     }
 }
 
@@ -313,6 +317,7 @@ fn rod(kind: JointType) -> ModelDef {
         joints: vec![j],
         loads: vec![],
         free_bodies: vec![],
+        sites: vec![],
     }
 }
 

@@ -83,6 +83,7 @@ proptest! {
                 velocity: Vec3::new(0.2, 0.0, -0.1),
                 angular_velocity: Vec3::from(w),
             }],
+            sites: vec![],
         };
         let (m, mut s) = build(&def, settings(0.02, 2));
         s.inputs_mut()[0] = tau;

@@ -73,6 +73,7 @@ fn model(kind: JointType) -> ModelDef {
             velocity: Vec3::new(0.3, -0.1, 0.2),
             angular_velocity: Vec3::new(1.0, -2.0, 0.5),
         }],
+        sites: vec![],
     }
 }
 

@@ -104,10 +104,44 @@ fn shape_and_consistency_problems_are_reported_together() {
         lines,
         [
             "mix.toml: gravity: expected 3 numbers, found 2",
-            "mix.toml: body[0].colour: unknown field \"colour\"; expected one of: name, mass, com, inertia, position, orientation, velocity, angular_velocity",
+            "mix.toml: body[0].colour: unknown field \"colour\"; expected one of: name, mass, com, inertia, position, orientation, velocity, angular_velocity, description",
             "mix.toml: joint[0].axis: expected 3 numbers, found 2",
             "mix.toml: body[0].mass: must be zero or positive and finite (got -1)",
             "mix.toml: body[0].inertia: violates the triangle inequality: principal moments 1 + 1 < 5, which no mass distribution has",
         ]
     );
+}
+
+#[test]
+fn sites_name_a_body_and_are_unique() {
+    let (_, text) = bundled().iter().find(|(n, _)| *n == "pendulum").unwrap();
+    let body = &pendulum().body[0].name;
+    let bad = format!(
+        "{text}\n[[site]]\nname = \"tip\"\nbody = \"{body}x\"\n\n[[site]]\nname = \"tip\"\nbody = \"world\"\norigin = {{ xyz = [0.0, nan, 0.0] }}\n\n[[site]]\nname = \"2tip\"\nbody = \"{body}\"\n"
+    );
+    let err = Spec::from_str(&bad, Format::Toml, "p.toml")
+        .unwrap_err()
+        .to_string();
+    for want in [
+        format!("p.toml: site[0].body: no body named \"{body}x\""),
+        "p.toml: site[1].name: duplicate site name \"tip\" (also site[0])".into(),
+        "p.toml: site[1].body: a site must be fixed on a body".into(),
+        "p.toml: site[1].origin".into(),
+        "p.toml: site[2].name: \"2tip\" is not an identifier".into(),
+    ] {
+        assert!(err.contains(&want), "missing {want:?} in\n{err}");
+    }
+    // a good site adds its outputs
+    let good = format!("{text}\n[[site]]\nname = \"tip\"\nbody = \"{body}\"\norigin = {{ xyz = [0.0, 0.0, -1.0] }}\n");
+    let spec = Spec::from_str(&good, Format::Toml, "p.toml").unwrap();
+    let (def, settings) = spec.lower().unwrap();
+    let table = triad::variables::VariableTable::new(&def, &settings);
+    for name in [
+        "site.tip.r[3]",
+        "site.tip.R[2,2]",
+        "site.tip.v[1]",
+        "site.tip.w[2]",
+    ] {
+        assert!(table.by_name(name).is_some(), "{name}");
+    }
 }

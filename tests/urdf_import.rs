@@ -47,6 +47,24 @@ fn import_then_build_gives_the_same_fmu() {
         toml.contains("merged into it by fixed joints: \"tool0\""),
         "{toml}"
     );
+    // sites for merged links; original names in the variables' descriptions
+    assert!(
+        toml.contains("[[site]]\nname = \"tool0\"\nbody = \"forearm\""),
+        "{toml}"
+    );
+    let table = String::from_utf8(triad(&["describe", urdf], tmp.path()).stdout).unwrap();
+    let line = |name: &str| {
+        table
+            .lines()
+            .find(|l| l.starts_with(name))
+            .unwrap_or_default()
+            .to_string()
+    };
+    assert!(
+        line("body.upper_arm.r[1] ").ends_with("(URDF link \"upper arm\")"),
+        "{table}"
+    );
+    assert!(line("site.tool0.R[1,1] ").contains("site tool0"), "{table}");
     let check = String::from_utf8(triad(&["check", urdf], tmp.path()).stdout).unwrap();
     assert!(
         check.contains("note: root link 'base_link' is welded to the world"),
@@ -83,18 +101,27 @@ fn joint_trajectory(opts: &ImportOptions) -> Vec<f64> {
     for k in 0..1000 {
         step(&model, &mut s, 1e-3).unwrap();
         if k % 100 == 99 {
+            let o = s.outputs();
             for n in names {
                 let j = def.joints.iter().position(|j| j.name == n).unwrap();
-                out.push(s.outputs().joints[j].q[0]);
-                out.push(s.outputs().joints[j].qd[0]);
+                out.push(o.joints[j].q[0]);
+                out.push(o.joints[j].qd[0]);
             }
+            // the tool frame: a site when merged, a body when kept
+            let tool = match def.sites.iter().position(|s| s.name == "tool0") {
+                Some(i) => &o.sites[i],
+                None => &o.bodies[def.bodies.iter().position(|b| b.name == "tool0").unwrap()],
+            };
+            out.extend(tool.r.iter().chain(tool.rot.iter()));
+            out.extend(tool.v.iter().chain(tool.w.iter()));
         }
     }
     out
 }
 
 /// The merged tool (mass, centre of mass, rotated inertia and parallel-axis term) moves the
-/// arm exactly as the tool kept as a body on a fixed joint.
+/// arm exactly as the tool kept as a body on a fixed joint, and its site (pose and twist)
+/// follows the kept body.
 #[test]
 fn merged_fixed_links_move_like_kept_ones() {
     let merged = joint_trajectory(&ImportOptions::default());

@@ -51,6 +51,7 @@ fn b7(damping: f64) -> ModelDef {
         joints: vec![sph, rev],
         loads: vec![],
         free_bodies: vec![],
+        sites: vec![],
     }
 }
 
@@ -169,6 +170,7 @@ fn floating() -> ModelDef {
             velocity: Vec3::new(0.1, -0.2, 0.05),
             angular_velocity: Vec3::new(0.5, -0.3, 1.2),
         }],
+        sites: vec![],
     }
 }
 

@@ -14,7 +14,7 @@ pub fn check(model: &str) -> Result<(), CliError> {
     let (spec, import_notes) = load_noted(model, &ImportOptions::default())?;
     let (def, settings) = spec.lower()?;
     let built = Model::new(&def, settings).map_err(|e| format!("{model}: {e}"))?;
-    let table = VariableTable::new(&def, &settings);
+    let table = VariableTable::new(&def, &settings).with_labels(&spec.labels());
     let count = |c: Causality| table.with_causality(c).count();
     let origin = if std::path::Path::new(model).exists() {
         model.to_string()
@@ -46,7 +46,7 @@ fn plural(n: usize, one: &str, many: &str) -> String {
 pub fn describe(model: &str) -> Result<(), CliError> {
     let spec = load(model)?;
     let (def, settings) = spec.lower()?;
-    let table = VariableTable::new(&def, &settings);
+    let table = VariableTable::new(&def, &settings).with_labels(&spec.labels());
     let rows: Vec<[String; 7]> = table
         .vars
         .iter()

@@ -104,7 +104,7 @@ pub fn run(args: &SimulateArgs) -> Result<(), CliError> {
     if !(stop.is_finite() && stop > start) {
         return Err(format!("--stop must be after the start time {start} (got {stop})").into());
     }
-    let table = VariableTable::new(&def, &settings);
+    let table = VariableTable::new(&def, &settings).with_labels(&spec.labels());
     let inputs = args
         .input
         .as_deref()

@@ -104,7 +104,7 @@ impl Instance {
                 )
             }
         };
-        let table = contract::table(&def, &settings);
+        let table = contract::table(&spec, &def, &settings);
         let expected = super::guid::guid(&spec.canonical_json(), &table);
         if guid != expected {
             return fail(

@@ -31,7 +31,7 @@ mod step;
 
 pub use model::def::{
     BodyDef, BodyIndex, BodyLoadDef, Frame, FreeBodyInitial, JointDef, JointInitial, JointType,
-    ModelDef, SolverSettings,
+    ModelDef, SiteDef, SolverSettings,
 };
 pub use model::error::ModelError;
 pub use model::runtime::{InputSlot, Model};

@@ -153,6 +153,7 @@ const BODY: &[Field] = &[
     opt("orientation", Check::Value(is::<OrientationSpec>)),
     opt("velocity", VEC3),
     opt("angular_velocity", VEC3),
+    opt("description", TEXT),
 ];
 const JOINT: &[Field] = &[
     req("name", TEXT),
@@ -167,8 +168,15 @@ const JOINT: &[Field] = &[
     opt("damping", NUM),
     opt("stiffness", NUM),
     opt("initial", Check::Table(INITIAL)),
+    opt("description", TEXT),
 ];
 const LOAD: &[Field] = &[req("body", TEXT), opt("torque", BOOL), opt("force", BOOL)];
+const SITE: &[Field] = &[
+    req("name", TEXT),
+    req("body", TEXT),
+    opt("origin", Check::Table(ORIGIN)),
+    opt("description", TEXT),
+];
 const TOP: &[Field] = &[
     req("name", TEXT),
     opt("description", TEXT),
@@ -178,6 +186,7 @@ const TOP: &[Field] = &[
     opt("body", Check::Tables(BODY)),
     opt("joint", Check::Tables(JOINT)),
     opt("load", Check::Tables(LOAD)),
+    opt("site", Check::Tables(SITE)),
 ];
 
 fn join(path: &str, key: &str) -> String {

@@ -3,7 +3,7 @@
 use crate::math::{matrix_to_quat, quat_to_matrix, rpy_to_matrix, Mat3, Vec3};
 use crate::mechanics::{
     BodyDef, BodyLoadDef, Frame, FreeBodyInitial, JointDef, JointInitial, JointType, ModelDef,
-    SolverSettings,
+    SiteDef, SolverSettings,
 };
 
 use super::schema::{JointKind, JointSpec, OriginSpec, Spec};
@@ -154,12 +154,24 @@ pub(crate) fn build(spec: &Spec) -> (ModelDef, SolverSettings) {
             angular_velocity: Vec3::from(b.angular_velocity.unwrap_or_default()),
         })
         .collect();
+    let sites = spec
+        .site
+        .iter()
+        .filter_map(|s| {
+            index(&s.body).map(|body| SiteDef {
+                name: s.name.clone(),
+                body,
+                frame: frame(&s.origin),
+            })
+        })
+        .collect();
     let def = ModelDef {
         gravity: Vec3::from(spec.gravity),
         bodies,
         joints,
         loads,
         free_bodies,
+        sites,
     };
     let settings = SolverSettings {
         max_step: spec.solver.max_step,

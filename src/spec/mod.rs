@@ -23,6 +23,8 @@
 //! | `[[joint]]` `actuated`, `damping`, `stiffness` | bool, numbers ≥ 0 | actuator inputs (false); viscous damping (0); spring about q = 0 (0) |
 //! | `[[joint]]` `initial = { q, qd }` | number or list | tree joints: coordinates and rates (zeros); spherical: `{ rpy \| quat, w }` |
 //! | `[[load]]` `body`, `torque`, `force` | name, bools | world-frame torque / force-at-COM inputs on a body |
+//! | `[[site]]` `name`, `body`, `origin = { xyz, rpy }` | identifier, a body, placement | a frame fixed on the body: outputs `site.S.r`, `R`, `v`, `w` |
+//! | `description` of a body, joint or site | text | appended to the descriptions of its variables (original URDF names) |
 //!
 //! # Decisions beyond interface.md
 //! - a joint is **loop-closing** exactly when it names `child_origin` (its frame in the child
@@ -51,7 +53,7 @@ mod values;
 pub use error::{Problem, SpecErrors};
 pub use schema::{
     BodySpec, Experiment, Format, InitialSpec, JointKind, JointSpec, LoadSpec, OriginSpec,
-    SolverSpec, Spec, JOINT_TYPES,
+    SiteSpec, SolverSpec, Spec, JOINT_TYPES,
 };
 pub use shipped::bundled;
 pub use values::{Coords, InertiaSpec, OrientationSpec};

@@ -46,6 +46,9 @@ pub struct Spec {
     /// Body loads (`[[load]]`).
     #[serde(default)]
     pub load: Vec<LoadSpec>,
+    /// Sites (`[[site]]`): named frames fixed on bodies, for reading poses.
+    #[serde(default, skip_serializing_if = "Vec::is_empty")]
+    pub site: Vec<SiteSpec>,
 }
 
 /// `[experiment]`: the FMU's DefaultExperiment and `triad simulate`'s defaults.
@@ -120,6 +123,10 @@ pub struct BodySpec {
     /// Free bodies only: initial angular velocity, world frame, rad/s.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub angular_velocity: Option<[f64; 3]>,
+    /// Free text appended to the descriptions of the body's variables (URDF import: the
+    /// link's original name when it is not an identifier).
+    #[serde(default, skip_serializing_if = "String::is_empty")]
+    pub description: String,
 }
 
 /// Joint type as written in a spec (`type = "revolute"`).
@@ -222,6 +229,10 @@ pub struct JointSpec {
     /// Initial coordinates and rates (tree joints only; default zero).
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub initial: Option<InitialSpec>,
+    /// Free text appended to the descriptions of the joint's variables (URDF import: the
+    /// joint's original name when it is not an identifier).
+    #[serde(default, skip_serializing_if = "String::is_empty")]
+    pub description: String,
 }
 
 impl JointSpec {
@@ -230,6 +241,24 @@ impl JointSpec {
     pub fn is_loop_closing(&self) -> bool {
         self.child_origin.is_some()
     }
+}
+
+/// `[[site]]`: a named frame fixed on a body (a tool centre point, a sensor); adds the outputs
+/// `site.S.r[i]`, `site.S.R[i,j]`, `site.S.v[i]`, `site.S.w[i]` (world frame).
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct SiteSpec {
+    /// Identifier, unique among sites.
+    pub name: String,
+    /// The body it is fixed on.
+    pub body: String,
+    /// The site frame in the body frame.
+    #[serde(default)]
+    pub origin: OriginSpec,
+    /// Free text appended to the descriptions of the site's variables (URDF import: the
+    /// link's original name when it is not an identifier).
+    #[serde(default, skip_serializing_if = "String::is_empty")]
+    pub description: String,
 }
 
 /// `[[load]]`: external inputs on a body (world frame; the force acts at the centre of mass).
@@ -252,6 +281,25 @@ impl Spec {
     #[must_use]
     pub fn canonical_json(&self) -> String {
         serde_json::to_string_pretty(self).unwrap_or_default()
+    }
+
+    /// `(prefix, text)` for every body, joint and site with a `description`: the prefix of its
+    /// variable names (`body.B`, `joint.J`, `site.S`) and the text to append to their
+    /// descriptions.
+    #[must_use]
+    pub fn labels(&self) -> Vec<(String, String)> {
+        let bodies = self.body.iter().map(|b| ("body", &b.name, &b.description));
+        let joints = self
+            .joint
+            .iter()
+            .map(|j| ("joint", &j.name, &j.description));
+        let sites = self.site.iter().map(|s| ("site", &s.name, &s.description));
+        bodies
+            .chain(joints)
+            .chain(sites)
+            .filter(|(_, _, d)| !d.is_empty())
+            .map(|(kind, name, d)| (format!("{kind}.{name}"), d.clone()))
+            .collect()
     }
 
     /// Index in `self.joint` of the joint called `name`.

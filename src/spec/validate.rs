@@ -214,6 +214,26 @@ fn loads(spec: &Spec, report: &mut Report, body_index: &HashMap<&str, usize>) {
     }
 }
 
+fn sites(spec: &Spec, report: &mut Report, body_index: &HashMap<&str, usize>) {
+    for (i, s) in spec.site.iter().enumerate() {
+        let p = format!("site[{i}]");
+        if !body_index.contains_key(s.body.as_str()) {
+            let why = if s.body == "world" {
+                "a site must be fixed on a body: a frame fixed in the world does not move".into()
+            } else {
+                let hint = did_you_mean(&s.body, body_index.keys().copied());
+                format!("no body named \"{}\"{hint}", s.body)
+            };
+            report.push(format!("{p}.body"), why);
+        }
+        check_finite(
+            report,
+            &format!("{p}.origin"),
+            &[s.origin.xyz, s.origin.rpy].concat(),
+        );
+    }
+}
+
 /// Every check that needs only the spec (no mechanics).
 pub(crate) fn structure(spec: &Spec) -> Report {
     let mut report = Report::default();
@@ -231,6 +251,12 @@ pub(crate) fn structure(spec: &Spec) -> Report {
     bodies(spec, &mut report);
     joints::check(spec, &mut report, &body_index);
     loads(spec, &mut report, &body_index);
+    check_names(
+        &mut report,
+        "site",
+        spec.site.iter().map(|s| s.name.as_str()),
+    );
+    sites(spec, &mut report, &body_index);
     if spec.body.is_empty() {
         report.push("body", "the model has no bodies: add at least one [[body]]");
     }

@@ -17,7 +17,8 @@ use super::options::{Base, ImportOptions};
 use super::robot::{at, Inertial, JointType, Pose, Robot};
 use crate::math::{matrix_to_rpy, rpy_to_matrix, Mat3, Vec3};
 use crate::spec::{
-    BodySpec, InertiaSpec, JointKind, JointSpec, OrientationSpec, OriginSpec, Problem, Spec,
+    BodySpec, InertiaSpec, JointKind, JointSpec, OrientationSpec, OriginSpec, Problem, SiteSpec,
+    Spec,
 };
 
 /// A rigid placement: rotation and translation (frame in its host frame).
@@ -242,6 +243,7 @@ pub(crate) fn spec(
         body: Vec::new(),
         joint: Vec::new(),
         load: Vec::new(),
+        site: Vec::new(),
     };
     match roots.as_slice() {
         [_] => {}
@@ -280,6 +282,7 @@ pub(crate) fn spec(
     let world_root = robot.links[root].name == "world";
     let mut bodies = Namer::new(&["world"]);
     let mut joints = Namer::default();
+    let mut sites = Namer::default();
     let mut spec = empty;
     spec.name = Namer::default().name(&robot.name);
     spec.description = format!("imported from {origin} (URDF robot \"{}\")", robot.name);
@@ -300,6 +303,11 @@ pub(crate) fn spec(
             orientation: None,
             velocity: None,
             angular_velocity: None,
+            description: if id == *original {
+                String::new()
+            } else {
+                format!("URDF link \"{original}\"")
+            },
         });
         parts.push(Vec::new());
         out.merged.push((id, vec![original.clone()]));
@@ -378,7 +386,20 @@ pub(crate) fn spec(
                     frame,
                 });
                 match ph.body {
-                    Some(b) => out.merged[b].1.push(j.child.clone()),
+                    Some(b) => {
+                        out.merged[b].1.push(j.child.clone());
+                        let id = sites.name(&j.child);
+                        spec.site.push(SiteSpec {
+                            description: if id == j.child {
+                                String::new()
+                            } else {
+                                format!("URDF link \"{}\"", j.child)
+                            },
+                            name: id,
+                            body: spec.body[b].name.clone(),
+                            origin: frame.origin(written),
+                        });
+                    }
                     None if robot.links[cl].inertial.is_some_and(|i| i.mass > 0.0) => {
                         out.notes.push(format!(
                             "link '{}' is welded to the world: its mass does not move",
@@ -414,6 +435,11 @@ pub(crate) fn spec(
                     j.name
                 ));
             }
+            let description = if id == j.name {
+                String::new()
+            } else {
+                format!("URDF joint \"{}\"", j.name)
+            };
             spec.joint.push(JointSpec {
                 name: id,
                 kind,
@@ -429,6 +455,7 @@ pub(crate) fn spec(
                 damping: j.damping,
                 stiffness: 0.0,
                 initial: None,
+                description,
             });
         }
     }

@@ -1,6 +1,6 @@
 //! The imported spec as editable TOML: the spec's own serialisation (numbers in shortest
 //! round-trip form, so reading it back gives the same spec and the same FMU), with a header
-//! and a comment before every body and joint naming the URDF elements it came from.
+//! and a comment before every body, joint and site naming the URDF elements it came from.
 
 use super::lower::Outcome;
 use crate::spec::Spec;
@@ -21,9 +21,22 @@ pub fn to_toml(spec: &Spec, outcome: &Outcome) -> Result<String, String> {
         out.push_str(&format!("# note: {n}\n"));
     }
     out.push('\n');
-    let (mut b, mut j) = (0, 0);
+    let (mut b, mut j, mut k) = (0, 0, 0);
     for line in body.lines() {
         match line.trim() {
+            // the importer declares no loads; an empty list says nothing
+            "load = []" => continue,
+            "[[site]]" => {
+                if let Some(s) = spec.site.get(k) {
+                    let original = s.description.strip_prefix("URDF link ");
+                    out.push_str(&format!(
+                        "\n# URDF link {} (welded to {} by a fixed joint: a site)\n",
+                        original.map_or_else(|| format!("\"{}\"", s.name), str::to_string),
+                        s.body
+                    ));
+                }
+                k += 1;
+            }
             "[[body]]" => {
                 if let Some((_, links)) = outcome.merged.get(b) {
                     out.push('\n');

@@ -18,6 +18,12 @@ pub fn read_state(acc: Accessor, state: &State) -> Option<f64> {
             .and_then(|b| b.rot.get((i, j)).copied()),
         Accessor::BodyV { body, i } => out.bodies.get(body).and_then(|b| b.v.get(i).copied()),
         Accessor::BodyW { body, i } => out.bodies.get(body).and_then(|b| b.w.get(i).copied()),
+        Accessor::SiteR { site, i } => out.sites.get(site).and_then(|b| b.r.get(i).copied()),
+        Accessor::SiteRot { site, i, j } => {
+            out.sites.get(site).and_then(|b| b.rot.get((i, j)).copied())
+        }
+        Accessor::SiteV { site, i } => out.sites.get(site).and_then(|b| b.v.get(i).copied()),
+        Accessor::SiteW { site, i } => out.sites.get(site).and_then(|b| b.w.get(i).copied()),
         Accessor::JointQ { joint, k } => out.joints.get(joint).and_then(|j| j.q.get(k).copied()),
         Accessor::JointQd { joint, k } => out.joints.get(joint).and_then(|j| j.qd.get(k).copied()),
         Accessor::Energy => Some(out.energy),

@@ -16,6 +16,33 @@ impl VariableTable {
     }
 }
 
+impl VariableTable {
+    /// Appends ` (text)` to the description of every variable whose name starts with one of
+    /// the `(prefix, text)` pairs' prefix followed by `.` (e.g. `body.link_1` → the link's
+    /// original URDF name).
+    #[must_use]
+    pub fn with_labels(mut self, labels: &[(String, String)]) -> Self {
+        if labels.is_empty() {
+            return self;
+        }
+        let by_prefix: std::collections::HashMap<&str, &str> = labels
+            .iter()
+            .map(|(p, t)| (p.as_str(), t.as_str()))
+            .collect();
+        for v in &mut self.vars {
+            // element names are identifiers: the prefix is the text before the second dot
+            let mut dots = v.name.match_indices('.').map(|(i, _)| i);
+            let (Some(_), Some(end)) = (dots.next(), dots.next()) else {
+                continue;
+            };
+            if let Some(text) = by_prefix.get(&v.name[..end]) {
+                v.description = format!("{} ({text})", v.description);
+            }
+        }
+        self
+    }
+}
+
 fn inputs(b: &mut Builder, def: &ModelDef) {
     // order of `Model::inputs`: joint actuators in joint order, then body loads
     let mut slot = 0;
@@ -163,6 +190,39 @@ fn outputs(b: &mut Builder, def: &ModelDef) {
                 unit,
                 format!("joint {n} rate: d/dt of the {}", coord_words(j.kind, k)),
                 Accessor::JointQd { joint, k },
+            );
+        }
+    }
+    for (site, sd) in def.sites.iter().enumerate() {
+        let n = &sd.name;
+        let on = def.bodies.get(sd.body).map_or("?", |b| b.name.as_str());
+        for (i, c) in XYZ.iter().enumerate() {
+            b.output(
+                format!("site.{n}.r[{}]", i + 1),
+                "m",
+                format!("origin of site {n} (fixed on body {on}), {c} component, world frame"),
+                Accessor::SiteR { site, i },
+            );
+        }
+        for i in 0..3 {
+            for j in 0..3 {
+                b.output(format!("site.{n}.R[{},{}]", i + 1, j + 1), "1", format!("rotation world <- site {n}, row {} column {} (column j is site axis j in world coordinates)", i + 1, j + 1), Accessor::SiteRot { site, i, j });
+            }
+        }
+        for (i, c) in XYZ.iter().enumerate() {
+            b.output(
+                format!("site.{n}.v[{}]", i + 1),
+                "m/s",
+                format!("velocity of site {n}'s origin, {c} component, world frame"),
+                Accessor::SiteV { site, i },
+            );
+        }
+        for (i, c) in XYZ.iter().enumerate() {
+            b.output(
+                format!("site.{n}.w[{}]", i + 1),
+                "rad/s",
+                format!("angular velocity of site {n}, {c} component, world frame"),
+                Accessor::SiteW { site, i },
             );
         }
     }

@@ -78,6 +78,36 @@ pub enum Accessor {
         /// Row or component, 0-based.
         i: usize,
     },
+    /// Site frame origin component `i`.
+    SiteR {
+        /// Site index.
+        site: usize,
+        /// Component, 0-based.
+        i: usize,
+    },
+    /// Site rotation matrix element `[i, j]` (0-based).
+    SiteRot {
+        /// Site index.
+        site: usize,
+        /// Row, 0-based.
+        i: usize,
+        /// Column, 0-based.
+        j: usize,
+    },
+    /// Site frame origin velocity component `i`.
+    SiteV {
+        /// Site index.
+        site: usize,
+        /// Component, 0-based.
+        i: usize,
+    },
+    /// Site angular velocity component `i`.
+    SiteW {
+        /// Site index.
+        site: usize,
+        /// Component, 0-based.
+        i: usize,
+    },
     /// Joint coordinate `k` (spherical: quaternion component).
     JointQ {
         /// Joint index.

@@ -127,6 +127,7 @@ pub fn free_body(
             velocity: v0,
             angular_velocity: w0,
         }],
+        sites: vec![],
     }
 }
 
@@ -200,6 +201,7 @@ pub fn double_pendulum() -> ModelDef {
         joints: vec![j1, j2],
         loads: vec![],
         free_bodies: vec![],
+        sites: vec![],
     }
 }
 
@@ -230,6 +232,7 @@ pub fn heavy_top() -> ModelDef {
         joints: vec![j],
         loads: vec![],
         free_bodies: vec![],
+        sites: vec![],
     }
 }
 
@@ -282,6 +285,7 @@ pub fn chain(n: usize) -> ModelDef {
         joints,
         loads: vec![],
         free_bodies: vec![],
+        sites: vec![],
     }
 }
 
@@ -423,5 +427,6 @@ pub fn four_bar(theta1: f64, crank_rate: f64) -> ModelDef {
         joints: vec![j0, j1, j2, close],
         loads: vec![],
         free_bodies: vec![],
+        sites: vec![],
     }
 }

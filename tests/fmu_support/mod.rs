@@ -67,7 +67,7 @@ impl TestModel {
     pub fn new(toml_text: &str) -> Self {
         let spec = Spec::from_str(toml_text, Format::Toml, "test.toml").expect("test spec parses");
         let (def, settings) = spec.lower().expect("test spec lowers");
-        let table = contract::table(&def, &settings);
+        let table = contract::table(&spec, &def, &settings);
         let guid = triad::fmu::guid::guid(&spec.canonical_json(), &table);
         let dir = tempfile::Builder::new()
             .prefix("triad fmu test ")

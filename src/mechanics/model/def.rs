@@ -199,6 +199,17 @@ pub struct FreeBodyInitial {
     pub angular_velocity: Vec3,
 }
 
+/// A site: a named frame fixed on a body, whose pose and twist are outputs.
+#[derive(Clone, Debug, PartialEq)]
+pub struct SiteDef {
+    /// Identifier, unique among sites.
+    pub name: String,
+    /// The body it is fixed on.
+    pub body: BodyIndex,
+    /// The site frame in the body frame.
+    pub frame: Frame,
+}
+
 /// Settings of the time integrator.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct SolverSettings {
@@ -237,4 +248,6 @@ pub struct ModelDef {
     pub loads: Vec<BodyLoadDef>,
     /// Initial states of free bodies (those with no joint).
     pub free_bodies: Vec<FreeBodyInitial>,
+    /// Sites (outputs only; they carry no mass and change no motion).
+    pub sites: Vec<SiteDef>,
 }

@@ -78,6 +78,7 @@ pub(crate) fn four_bar() -> ModelDef {
         joints: vec![j0, j1, j2, close],
         loads: vec![],
         free_bodies: vec![],
+        sites: vec![],
     }
 }
 
@@ -112,6 +113,7 @@ pub(crate) fn hanging_chain(n: usize, axial: f64) -> ModelDef {
         joints,
         loads: vec![],
         free_bodies: vec![],
+        sites: vec![],
     }
 }
 

@@ -38,6 +38,7 @@ fn model(joints: &[(Option<usize>, usize, bool)], free: &[usize]) -> ModelDef {
         joints: joints.iter().enumerate().map(joint).collect(),
         loads: vec![],
         free_bodies: free.iter().map(fb).collect(),
+        sites: vec![],
     }
 }
 

@@ -1,4 +1,10 @@
-//! Output values at the current node time: per body, per joint and for the system.
+//! Output values at the current node time: per body, per joint, per site and for the system.
+//!
+//! ```text
+//! body:  r = φ − R c,  R = [d₁ d₂ d₃],  v = v̂_φ − Σᵢ cᵢ v̂_dᵢ,  w = ½ Σᵢ dᵢ × v̂_dᵢ   (v̂: projected)
+//! site:  r_s = r + R p,  R_s = R R_p,  v_s = v + w × R p,  w_s = w   (p, R_p: site in body)
+//! E = Σ ½ vₙᵀ M vₙ − m g·φ + springs,   p = Σ m v_φ,   L = Σ (φ × m v_φ + Σᵢ dᵢ × pᵢ)
+//! ```
 // index loops over coupled fixed-size arrays read closer to the formulas than iterator chains
 #![allow(clippy::needless_range_loop)]
 
@@ -34,6 +40,8 @@ pub struct Outputs {
     pub bodies: Vec<BodyOutput>,
     /// Per joint, in model order.
     pub joints: Vec<JointOutput>,
+    /// Per site, in model order (pose and twist of the site frame, as for bodies).
+    pub sites: Vec<BodyOutput>,
     /// Kinetic + potential (gravity and joint springs) energy, J.
     pub energy: f64,
     /// Work of the inputs minus energy dissipated by damping since the start, J.
@@ -46,7 +54,7 @@ pub struct Outputs {
     pub constraint_residual: f64,
 }
 
-use crate::mechanics::model::constraint::{body_nodes, read3, Nodes};
+use crate::mechanics::model::constraint::{body_nodes, Nodes};
 use crate::mechanics::model::joint::world_nodes;
 use crate::mechanics::model::runtime::{DofRt, Model};
 
@@ -65,6 +73,7 @@ impl Outputs {
                     qd: vec![0.0; j.kind.dof()],
                 })
                 .collect(),
+            sites: vec![BodyOutput::default(); model.def().sites.len()],
             ..Self::default()
         }
     }
@@ -158,7 +167,15 @@ pub(crate) fn update(
             &mut jo.qd,
         );
     }
-    let _ = read3;
+    for (site, o) in model.def().sites.iter().zip(out.sites.iter_mut()) {
+        // rigidly attached: r_s = r + R p, R_s = R R_p, v_s = v + w × R p, w_s = w
+        let b = &out.bodies[site.body];
+        let arm = b.rot * site.frame.translation;
+        o.r = b.r + arm;
+        o.rot = b.rot * site.frame.rotation;
+        o.v = b.v + b.w.cross(&arm);
+        o.w = b.w;
+    }
     out.energy = energy;
     out.work = work;
     out.p = p;

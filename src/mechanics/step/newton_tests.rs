@@ -103,6 +103,7 @@ pub(crate) fn sample() -> ModelDef {
             velocity: Vec3::new(0.3, -0.1, 0.2),
             angular_velocity: Vec3::new(1.0, -2.0, 0.5),
         }],
+        sites: vec![],
     }
 }
 
