@@ -20,6 +20,8 @@ pub struct Simulation {
     state: State,
     /// State at the start of the current communication step (roll-back target).
     saved: State,
+    /// Whether a clamped actuator input has been reported ([`Simulation::clamp_notice`]).
+    clamp_noticed: bool,
 }
 
 impl Simulation {
@@ -40,7 +42,20 @@ impl Simulation {
             model,
             state,
             saved,
+            clamp_noticed: false,
         })
+    }
+
+    /// The first time an actuator input exceeds its joint's effort limit (the step applies it
+    /// clamped to ±effort), a message naming the joint; `None` before and ever after: a clamp is
+    /// reported once per run. Call it after setting the inputs of a communication step.
+    pub fn clamp_notice(&mut self) -> Option<String> {
+        if self.clamp_noticed {
+            return None;
+        }
+        let msg = self.model.clamped_input(self.state.inputs())?;
+        self.clamp_noticed = true;
+        Some(msg)
     }
 
     /// The model.

@@ -72,6 +72,7 @@ fn joint(
         actuated: false,
         damping: 0.0,
         stiffness: 0.0,
+        limits: Default::default(),
         loop_closing: false,
         initial: JointInitial::Coords { q, qd },
     }

@@ -94,6 +94,7 @@ fn setup(kind: JointType, world_parent: bool, seed: u64) -> ModelDef {
         actuated: false,
         damping: 0.0,
         stiffness: 0.0,
+        limits: Default::default(),
         loop_closing: false,
         initial: random_state(kind, &mut rng),
     };

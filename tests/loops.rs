@@ -57,6 +57,7 @@ fn revolute(
         actuated: false,
         damping: 0.0,
         stiffness: 0.0,
+        limits: Default::default(),
         loop_closing: false,
         initial: JointInitial::Coords {
             q: vec![q],

@@ -54,6 +54,7 @@ fn model(kind: JointType) -> ModelDef {
         } else {
             4.0
         },
+        limits: Default::default(),
         loop_closing: false,
         initial: initial(s),
     };

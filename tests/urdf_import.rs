@@ -231,3 +231,51 @@ fn malformed_urdfs_are_reported() {
         }
     }
 }
+
+/// `<limit lower upper effort>` of revolute and prismatic joints become stops and an effort
+/// clamp; continuous joints keep only the effort; placeholders (lower = upper, effort = 0) are
+/// left out with a note; `no_limits` leaves everything out.
+#[test]
+fn limits_become_stops_unless_placeholders_or_turned_off() {
+    let (spec, _) = import(&arm_text(), "arm.urdf", &ImportOptions::default()).unwrap();
+    let shoulder = &spec.joint[spec.joint_index("shoulder").unwrap()];
+    assert_eq!(
+        (shoulder.lower, shoulder.upper, shoulder.effort),
+        (Some(-2.0), Some(2.0), Some(50.0))
+    );
+    let off = ImportOptions {
+        no_limits: true,
+        ..ImportOptions::default()
+    };
+    let (spec, _) = import(&arm_text(), "arm.urdf", &off).unwrap();
+    assert!(spec
+        .joint
+        .iter()
+        .all(|j| j.lower.is_none() && j.effort.is_none()));
+    let placeholder = arm_text()
+        .replace(
+            "<limit lower=\"-2\" upper=\"2\" effort=\"50\" velocity=\"3\"/>",
+            "<limit lower=\"0\" upper=\"0\" effort=\"0\" velocity=\"0\"/>",
+        )
+        .replace(
+            "<axis xyz=\"0 2 0\"/>",
+            "<axis xyz=\"0 2 0\"/><limit lower=\"-1\" upper=\"1\" effort=\"7\"/>",
+        );
+    let (spec, outcome) = import(&placeholder, "arm.urdf", &ImportOptions::default()).unwrap();
+    let shoulder = &spec.joint[spec.joint_index("shoulder").unwrap()];
+    assert_eq!((shoulder.lower, shoulder.effort), (None, None));
+    let elbow = &spec.joint[spec.joint_index("elbow").unwrap()];
+    assert_eq!(
+        (elbow.lower, elbow.upper, elbow.effort),
+        (None, None, Some(7.0))
+    );
+    let notes = outcome.notes.join("\n");
+    assert!(
+        notes.contains("joint 'shoulder': <limit lower=\"0\" upper=\"0\"> is a placeholder"),
+        "{notes}"
+    );
+    assert!(
+        notes.contains("joint 'shoulder': <limit effort=\"0\"> is a placeholder"),
+        "{notes}"
+    );
+}

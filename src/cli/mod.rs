@@ -52,7 +52,9 @@ pub enum Command {
     /// Write the model spec equivalent to a URDF (editable TOML; building from either gives
     /// the same FMU). The root link is as the URDF says (a `world` link with a fixed joint:
     /// welded; a floating joint: free); a bare root is welded to the world (as Pinocchio and
-    /// MuJoCo do). Links on fixed joints are merged into their parents.
+    /// MuJoCo do). Links on fixed joints are merged into their parents and become sites.
+    /// Revolute and prismatic `<limit lower upper>` become joint stops and `effort` clamps the
+    /// actuator input (placeholders lower = upper or effort = 0 are ignored).
     Import {
         /// Robot description (.urdf).
         robot: PathBuf,
@@ -68,6 +70,10 @@ pub enum Command {
         /// Keep links on fixed joints as bodies on `fixed` joints instead of merging them.
         #[arg(long)]
         keep_fixed: bool,
+        /// Leave out the URDF's <limit> (by default `lower`/`upper` become joint stops and
+        /// `effort` clamps the actuator input).
+        #[arg(long)]
+        no_limits: bool,
     },
 }
 
@@ -84,13 +90,18 @@ pub fn run(cli: Cli) -> ExitCode {
             fixed_base,
             floating_base,
             keep_fixed,
+            no_limits,
         } => {
             let base = match (fixed_base, floating_base) {
                 (true, _) => triad::urdf::Base::Fixed,
                 (_, true) => triad::urdf::Base::Floating,
                 _ => triad::urdf::Base::Auto,
             };
-            let opts = triad::urdf::ImportOptions { base, keep_fixed };
+            let opts = triad::urdf::ImportOptions {
+                base,
+                keep_fixed,
+                no_limits,
+            };
             commands::import(&robot, output.as_deref(), &opts)
         }
     };

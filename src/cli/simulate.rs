@@ -188,6 +188,9 @@ pub fn run(args: &SimulateArgs) -> Result<(), CliError> {
         if let Some(table) = &inputs {
             table.apply(sim.time(), sim.state_mut().inputs_mut());
         }
+        if let Some(msg) = sim.clamp_notice() {
+            bar.suspend(|| eprintln!("note: {msg}"));
+        }
         let target = if k == n { stop } else { start + k as f64 * h };
         let dt = target - sim.time();
         sim.advance(dt).map_err(|e| {

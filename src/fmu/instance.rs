@@ -371,9 +371,15 @@ impl Instance {
         }
         // land on the master's time grid exactly
         sim.state_mut().set_time(t);
-        match sim.advance(h) {
+        let clamped = sim.clamp_notice();
+        let result = sim.advance(h);
+        let now = sim.time();
+        if let Some(msg) = clamped {
+            self.log(Status::Warning, Category::LogStatusWarning, &msg);
+        }
+        match result {
             Ok(()) => {
-                self.last_successful_time = sim.time();
+                self.last_successful_time = now;
                 Ok(Status::Ok)
             }
             Err(e) => {

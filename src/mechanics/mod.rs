@@ -30,8 +30,8 @@ mod run;
 mod step;
 
 pub use model::def::{
-    BodyDef, BodyIndex, BodyLoadDef, Frame, FreeBodyInitial, JointDef, JointInitial, JointType,
-    ModelDef, SiteDef, SolverSettings,
+    BodyDef, BodyIndex, BodyLoadDef, Frame, FreeBodyInitial, JointDef, JointInitial, JointLimits,
+    JointType, ModelDef, SiteDef, SolverSettings, STOP_STIFFNESS,
 };
 pub use model::error::ModelError;
 pub use model::runtime::{InputSlot, Model};

@@ -167,6 +167,11 @@ const JOINT: &[Field] = &[
     opt("actuated", BOOL),
     opt("damping", NUM),
     opt("stiffness", NUM),
+    opt("lower", NUM),
+    opt("upper", NUM),
+    opt("effort", NUM),
+    opt("stop_stiffness", NUM),
+    opt("stop_damping", NUM),
     opt("initial", Check::Table(INITIAL)),
     opt("description", TEXT),
 ];

@@ -2,8 +2,8 @@
 
 use crate::math::{matrix_to_quat, quat_to_matrix, rpy_to_matrix, Mat3, Vec3};
 use crate::mechanics::{
-    BodyDef, BodyLoadDef, Frame, FreeBodyInitial, JointDef, JointInitial, JointType, ModelDef,
-    SiteDef, SolverSettings,
+    BodyDef, BodyLoadDef, Frame, FreeBodyInitial, JointDef, JointInitial, JointLimits, JointType,
+    ModelDef, SiteDef, SolverSettings,
 };
 
 use super::schema::{JointKind, JointSpec, OriginSpec, Spec};
@@ -77,6 +77,17 @@ fn initial(j: &JointSpec) -> JointInitial {
     }
 }
 
+fn limits(j: &JointSpec) -> JointLimits {
+    let d = JointLimits::default();
+    JointLimits {
+        lower: j.lower.unwrap_or(d.lower),
+        upper: j.upper.unwrap_or(d.upper),
+        effort: j.effort.unwrap_or(d.effort),
+        stop_stiffness: j.stop_stiffness.unwrap_or(d.stop_stiffness),
+        stop_damping: j.stop_damping.unwrap_or(d.stop_damping),
+    }
+}
+
 fn orientation(o: Option<&OrientationSpec>) -> Mat3 {
     match o {
         None => Mat3::identity(),
@@ -126,6 +137,7 @@ pub(crate) fn build(spec: &Spec) -> (ModelDef, SolverSettings) {
             actuated: j.actuated,
             damping: j.damping,
             stiffness: j.stiffness,
+            limits: limits(j),
             loop_closing: j.is_loop_closing(),
             initial: initial(j),
         })

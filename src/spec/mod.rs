@@ -21,6 +21,8 @@
 //! | `[[joint]]` `child_origin = { xyz, rpy }` | placement | loop-closing joints only: joint frame in the child frame |
 //! | `[[joint]]` `axis`, `axis2` | 3 numbers | joint axis in the joint frame (normalised); `axis2` for universal joints, ⟂ `axis` |
 //! | `[[joint]]` `actuated`, `damping`, `stiffness` | bool, numbers ≥ 0 | actuator inputs (false); viscous damping (0); spring about q = 0 (0) |
+//! | `[[joint]]` `lower`, `upper`, `effort` | numbers | revolute and prismatic: position limits (one-sided stops; none), actuator clamp ±effort (none) |
+//! | `[[joint]]` `stop_stiffness`, `stop_damping` | numbers | the stops' spring (1e4 N·m/rad or N/m) and Hunt–Crossley damping (0) |
 //! | `[[joint]]` `initial = { q, qd }` | number or list | tree joints: coordinates and rates (zeros); spherical: `{ rpy \| quat, w }` |
 //! | `[[load]]` `body`, `torque`, `force` | name, bools | world-frame torque / force-at-COM inputs on a body |
 //! | `[[site]]` `name`, `body`, `origin = { xyz, rpy }` | identifier, a body, placement | a frame fixed on the body: outputs `site.S.r`, `R`, `v`, `w` |

@@ -226,6 +226,22 @@ pub struct JointSpec {
     /// Linear stiffness about q = 0 per coordinate, N·m/rad or N/m (≥ 0; not spherical).
     #[serde(default)]
     pub stiffness: f64,
+    /// Revolute and prismatic joints: lower position limit, rad or m (a one-sided stop).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub lower: Option<f64>,
+    /// Revolute and prismatic joints: upper position limit, rad or m (a one-sided stop).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub upper: Option<f64>,
+    /// Revolute and prismatic joints: the actuator input is clamped to ±effort, N·m or N (> 0).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub effort: Option<f64>,
+    /// Stiffness of the stops, N·m/rad or N/m (> 0; default 1e4).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub stop_stiffness: Option<f64>,
+    /// Hunt–Crossley damping of the stops (force c·penetration·rate), N·m·s/rad² or N·s/m²
+    /// (≥ 0; default 0: elastic stops).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub stop_damping: Option<f64>,
     /// Initial coordinates and rates (tree joints only; default zero).
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub initial: Option<InitialSpec>,

@@ -426,15 +426,11 @@ pub(crate) fn spec(
                     j.name
                 ));
             }
-            if j.limit
-                .is_some_and(|l| matches!((l.lower, l.upper), (Some(lo), Some(hi)) if lo < hi))
-                && matches!(j.kind, JointType::Revolute | JointType::Prismatic)
-            {
-                out.notes.push(format!(
-                    "joint '{}': position limits are not enforced (joint stops are not implemented yet)",
-                    j.name
-                ));
-            }
+            let (lower, upper, effort) = if movable && !opts.no_limits {
+                limits(j, &mut out.notes)
+            } else {
+                (None, None, None)
+            };
             let description = if id == j.name {
                 String::new()
             } else {
@@ -454,6 +450,11 @@ pub(crate) fn spec(
                 actuated: movable,
                 damping: j.damping,
                 stiffness: 0.0,
+                lower,
+                upper,
+                effort,
+                stop_stiffness: None,
+                stop_damping: None,
                 initial: None,
                 description,
             });
@@ -493,4 +494,47 @@ pub(crate) fn spec(
         ]);
     }
     (spec, out)
+}
+
+/// The position limits (revolute and prismatic joints; not continuous ones) and the effort
+/// limit of a movable joint's `<limit>`; placeholders are left out with a note.
+fn limits(
+    j: &super::robot::Joint,
+    notes: &mut Vec<String>,
+) -> (Option<f64>, Option<f64>, Option<f64>) {
+    let Some(l) = j.limit else {
+        return (None, None, None);
+    };
+    let effort = match l.effort {
+        Some(e) if e > 0.0 => Some(e),
+        Some(_) => {
+            notes.push(format!(
+                "joint '{}': <limit effort=\"0\"> is a placeholder: the actuator is not clamped",
+                j.name
+            ));
+            None
+        }
+        None => None,
+    };
+    if j.kind == JointType::Continuous {
+        return (None, None, effort);
+    }
+    match (l.lower, l.upper) {
+        (Some(lo), Some(hi)) if lo < hi => (Some(lo), Some(hi), effort),
+        (Some(lo), Some(hi)) if lo == hi => {
+            notes.push(format!(
+                "joint '{}': <limit lower=\"{lo}\" upper=\"{hi}\"> is a placeholder: no joint stops",
+                j.name
+            ));
+            (None, None, effort)
+        }
+        (Some(lo), Some(hi)) => {
+            notes.push(format!(
+                "joint '{}': <limit lower=\"{lo}\" upper=\"{hi}\"> has lower > upper: no joint stops",
+                j.name
+            ));
+            (None, None, effort)
+        }
+        (lo, hi) => (lo, hi, effort),
+    }
 }

@@ -19,4 +19,6 @@ pub struct ImportOptions {
     pub base: Base,
     /// Keep links on fixed joints as (possibly massless) bodies instead of merging them.
     pub keep_fixed: bool,
+    /// Leave out `<limit lower upper effort>`: no joint stops, no effort clamp.
+    pub no_limits: bool,
 }

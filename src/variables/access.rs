@@ -2,7 +2,7 @@
 //! parameters live in the [`State`]; fixed parameters in the [`ModelDef`] and [`SolverSettings`].
 
 use super::types::Accessor;
-use crate::mechanics::{JointInitial, ModelDef, SolverSettings, State};
+use crate::mechanics::{JointInitial, JointLimits, ModelDef, SolverSettings, State};
 
 /// Value of an input, an output or a tunable parameter (damping, stiffness) in `state`; `None`
 /// for fixed parameters (see [`read_param`]) and for outputs the state does not hold.
@@ -62,6 +62,11 @@ pub fn read_param(acc: Accessor, def: &ModelDef, settings: &SolverSettings) -> O
         Accessor::Qd0 { joint, k } => initial(def, joint, k, true),
         Accessor::Damping(j) => def.joints.get(j).map(|j| j.damping),
         Accessor::Stiffness(j) => def.joints.get(j).map(|j| j.stiffness),
+        Accessor::Lower(j) => def.joints.get(j).map(|j| j.limits.lower),
+        Accessor::Upper(j) => def.joints.get(j).map(|j| j.limits.upper),
+        Accessor::Effort(j) => def.joints.get(j).map(|j| j.limits.effort),
+        Accessor::StopStiffness(j) => def.joints.get(j).map(|j| j.limits.stop_stiffness),
+        Accessor::StopDamping(j) => def.joints.get(j).map(|j| j.limits.stop_damping),
         Accessor::MaxStep => Some(settings.max_step),
         Accessor::Tolerance => Some(settings.tolerance),
         Accessor::Order => Some(f64::from(settings.order)),
@@ -95,6 +100,10 @@ fn set_initial(
     };
     *slot.ok_or_else(|| format!("joint '{}' has no coordinate {}", j.name, k + 1))? = value;
     Ok(())
+}
+
+fn limits(def: &mut ModelDef, j: usize) -> Result<&mut JointLimits, String> {
+    Ok(&mut def.joints.get_mut(j).ok_or("no such joint")?.limits)
 }
 
 /// Sets a parameter in `def`/`settings` (before the model is built). `inertia[i,j]` sets `[i,j]`
@@ -143,6 +152,24 @@ pub fn write_param(
         Accessor::Stiffness(j) => {
             nonneg("stiffness")?;
             def.joints.get_mut(j).ok_or("no such joint")?.stiffness = value;
+        }
+        Accessor::Lower(j) => limits(def, j)?.lower = value,
+        Accessor::Upper(j) => limits(def, j)?.upper = value,
+        Accessor::Effort(j) => {
+            if value <= 0.0 {
+                return Err(format!("effort must be > 0 (got {value})"));
+            }
+            limits(def, j)?.effort = value;
+        }
+        Accessor::StopStiffness(j) => {
+            if value <= 0.0 {
+                return Err(format!("stop_stiffness must be > 0 (got {value})"));
+            }
+            limits(def, j)?.stop_stiffness = value;
+        }
+        Accessor::StopDamping(j) => {
+            nonneg("stop_damping")?;
+            limits(def, j)?.stop_damping = value;
         }
         Accessor::MaxStep => {
             if value <= 0.0 {

@@ -80,6 +80,7 @@ fn joint_parameters(b: &mut Builder, joint: usize, j: &JointDef) {
         format!("viscous damping of joint {n} on each coordinate ({per})"),
         Accessor::Damping(joint),
     );
+    limit_parameters(b, joint, j);
     if j.kind != JointType::Spherical {
         let per = per.replace(".s", "");
         tunable(
@@ -89,6 +90,59 @@ fn joint_parameters(b: &mut Builder, joint: usize, j: &JointDef) {
             stiffness_unit,
             format!("linear stiffness of joint {n} about q = 0 on each coordinate ({per})"),
             Accessor::Stiffness(joint),
+        );
+    }
+}
+
+/// `lower`, `upper`, `stop_stiffness`, `stop_damping` (joints with stops) and `effort` (with an
+/// effort limit) of a revolute or prismatic joint.
+fn limit_parameters(b: &mut Builder, joint: usize, j: &JointDef) {
+    let (q, force, k, c) = match j.kind {
+        JointType::Revolute => ("rad", "N.m", "N.m", "N.m.s"),
+        JointType::Prismatic => ("m", "N", "N/m", "N.s/m2"),
+        _ => return,
+    };
+    let n = &j.name;
+    let l = &j.limits;
+    for (word, v, acc) in [
+        ("lower", l.lower, Accessor::Lower(joint)),
+        ("upper", l.upper, Accessor::Upper(joint)),
+    ] {
+        if v.is_finite() {
+            b.fixed(
+                format!("joint.{n}.{word}"),
+                v,
+                Some(q),
+                format!("{word} position limit of joint {n} (a one-sided stop)"),
+                acc,
+            );
+        }
+    }
+    if l.has_stops() {
+        b.fixed(
+            format!("joint.{n}.stop_stiffness"),
+            l.stop_stiffness,
+            Some(k),
+            format!("stiffness of joint {n}'s stops per unit of penetration"),
+            Accessor::StopStiffness(joint),
+        );
+        b.fixed(
+            format!("joint.{n}.stop_damping"),
+            l.stop_damping,
+            Some(c),
+            format!("Hunt-Crossley damping of joint {n}'s stops: force = stop_damping x penetration x rate (dissipation counted in system.work)"),
+            Accessor::StopDamping(joint),
+        );
+    }
+    if l.effort.is_finite() {
+        b.fixed(
+            format!("joint.{n}.effort"),
+            l.effort,
+            Some(force),
+            format!(
+                "largest actuator input of joint {n}: inputs beyond +-effort are applied clamped"
+            ),
+            Accessor::Effort(joint),
         );
     }
 }

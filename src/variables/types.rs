@@ -163,6 +163,16 @@ pub enum Accessor {
     Damping(usize),
     /// `joint.J.stiffness` (tunable).
     Stiffness(usize),
+    /// `joint.J.lower` (fixed).
+    Lower(usize),
+    /// `joint.J.upper` (fixed).
+    Upper(usize),
+    /// `joint.J.effort` (fixed).
+    Effort(usize),
+    /// `joint.J.stop_stiffness` (fixed).
+    StopStiffness(usize),
+    /// `joint.J.stop_damping` (fixed).
+    StopDamping(usize),
     /// `solver.max_step`.
     MaxStep,
     /// `solver.tolerance`.

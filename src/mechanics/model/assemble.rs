@@ -291,6 +291,12 @@ pub(crate) fn build(model: &mut Model, joint_input: &[Option<usize>]) -> Result<
             input: joint_input[j],
             turn0,
             geom: g,
+            stops: stops_of(jd)?,
+            effort: if matches!(jd.kind, JointType::Revolute | JointType::Prismatic) {
+                jd.limits.effort
+            } else {
+                f64::INFINITY
+            },
         });
         row0 += nrow;
         turn0 += nturn;
@@ -373,3 +379,30 @@ pub(crate) fn unwrap(prev: f64, raw: f64) -> f64 {
 #[cfg(test)]
 #[path = "assemble_tests.rs"]
 mod tests;
+
+/// The stops of a revolute or prismatic joint with a position limit.
+fn stops_of(jd: &super::def::JointDef) -> Result<Option<super::stops::Stops>, ModelError> {
+    let l = &jd.limits;
+    let ok = !(l.lower >= l.upper || l.lower.is_nan() || l.upper.is_nan())
+        && l.effort > 0.0
+        && l.stop_stiffness > 0.0
+        && l.stop_stiffness.is_finite()
+        && l.stop_damping >= 0.0
+        && l.stop_damping.is_finite();
+    if !ok {
+        return Err(ModelError::Invalid(format!(
+            "joint '{}': limits need lower < upper, effort > 0, stop_stiffness > 0 and finite, stop_damping >= 0 and finite (got {:?})",
+            jd.name, l
+        )));
+    }
+    Ok(
+        (matches!(jd.kind, JointType::Revolute | JointType::Prismatic) && l.has_stops()).then_some(
+            super::stops::Stops {
+                lower: l.lower,
+                upper: l.upper,
+                stiffness: l.stop_stiffness,
+                damping: l.stop_damping,
+            },
+        ),
+    )
+}

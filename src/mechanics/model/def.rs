@@ -167,10 +167,52 @@ pub struct JointDef {
     pub damping: f64,
     /// Linear stiffness about q = 0 on each coordinate, N·m/rad or N/m (≥ 0; tunable).
     pub stiffness: f64,
+    /// Position stops and actuator effort limit (revolute and prismatic joints).
+    pub limits: JointLimits,
     /// True for a joint that closes a kinematic loop (its child already has a tree parent).
     pub loop_closing: bool,
     /// Initial coordinates and rates (tree joints only).
     pub initial: JointInitial,
+}
+
+/// Default stiffness of a joint stop, N·m/rad or N/m.
+pub const STOP_STIFFNESS: f64 = 1.0e4;
+
+/// Limits of a revolute or prismatic joint's coordinate (rad or m) and actuator (N·m or N).
+/// The stops are one-sided springs with a Hunt–Crossley damper beyond each limit
+/// (`model::stops`); the actuator input is clamped to `±effort`.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct JointLimits {
+    /// Lower position limit (−∞: none).
+    pub lower: f64,
+    /// Upper position limit (+∞: none).
+    pub upper: f64,
+    /// Largest actuator input magnitude (+∞: none).
+    pub effort: f64,
+    /// Stop stiffness, N·m/rad or N/m (> 0).
+    pub stop_stiffness: f64,
+    /// Stop damping (Hunt–Crossley: force `c·penetration·rate`), N·m·s/rad² or N·s/m² (≥ 0).
+    pub stop_damping: f64,
+}
+
+impl Default for JointLimits {
+    fn default() -> Self {
+        Self {
+            lower: f64::NEG_INFINITY,
+            upper: f64::INFINITY,
+            effort: f64::INFINITY,
+            stop_stiffness: STOP_STIFFNESS,
+            stop_damping: 0.0,
+        }
+    }
+}
+
+impl JointLimits {
+    /// True when a position limit is set.
+    #[must_use]
+    pub fn has_stops(&self) -> bool {
+        self.lower.is_finite() || self.upper.is_finite()
+    }
 }
 
 /// Declared body loads: inputs applied to `body`.

@@ -35,6 +35,7 @@ fn revolute(parent: Option<usize>, child: usize, at: Vec3, axis: Vec3, q: f64) -
         actuated: false,
         damping: 0.0,
         stiffness: 0.0,
+        limits: Default::default(),
         loop_closing: false,
         initial: JointInitial::Coords {
             q: vec![q],

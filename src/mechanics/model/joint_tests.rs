@@ -34,6 +34,7 @@ fn degenerate_axes_are_rejected() {
         actuated: false,
         damping: 0.0,
         stiffness: 0.0,
+        limits: Default::default(),
         loop_closing: false,
         initial: Default::default(),
     };

@@ -22,6 +22,7 @@ fn model(joints: &[(Option<usize>, usize, bool)], free: &[usize]) -> ModelDef {
             actuated: false,
             damping: 0.0,
             stiffness: 0.0,
+            limits: Default::default(),
             loop_closing,
             initial: Default::default(),
         };

@@ -12,6 +12,7 @@
 //!   rotation increment, projected blocks), where the model's rows land in the linear system
 //!   (`sink`), and the M-orthogonal projection of velocities onto the admissible ones
 //!   (`projection`; it makes the initial rates consistent and the reported rates exact);
+//! - one-sided joint stops as an exact discrete gradient (`stops`);
 //! - test models shared by several layers' unit tests (`fixtures`).
 //!
 //! Uses: `linalg` and `crate::math`; never `step` or `run`.
@@ -33,3 +34,4 @@ pub(crate) mod redundancy;
 pub(crate) mod runtime;
 pub(crate) mod sink;
 pub(crate) mod sparse_row;
+pub(crate) mod stops;

@@ -8,6 +8,7 @@ use super::constraint::{DotRow, LinVec};
 use super::def::{JointType, ModelDef, SolverSettings};
 use super::joint::JointGeom;
 use super::sparse_row::SparseRow;
+use super::stops::Stops;
 use crate::math::{Mat3, Vec3};
 use crate::mechanics::linalg::border::Border;
 use crate::mechanics::linalg::tree::Block;
@@ -118,6 +119,10 @@ pub(crate) struct JointRt {
     pub turn0: usize,
     /// The joint's geometry (coordinates and rates for outputs and unwrapping).
     pub geom: JointGeom,
+    /// Position stops on the coordinate (revolute and prismatic joints with limits).
+    pub stops: Option<Stops>,
+    /// Largest actuator input magnitude (+∞: none).
+    pub effort: f64,
 }
 
 /// A built, immutable multibody model.
@@ -181,6 +186,21 @@ impl Model {
     #[must_use]
     pub fn settings(&self) -> &SolverSettings {
         &self.settings
+    }
+
+    /// A message naming the first joint whose actuator input in `inputs` (the layout of
+    /// [`Model::inputs`]) exceeds its effort limit, if any: the step applies it clamped.
+    #[must_use]
+    pub fn clamped_input(&self, inputs: &[f64]) -> Option<String> {
+        self.joints.iter().zip(&self.def.joints).find_map(|(jt, jd)| {
+            let first = jt.input?;
+            let e = jt.effort;
+            let x = inputs
+                .get(first..first + jd.kind.dof())?
+                .iter()
+                .find(|x| x.abs() > e)?;
+            Some(format!("joint '{}': actuator input {x} exceeds its effort limit and is applied clamped to ±{e} (reported once per run)", jd.name))
+        })
     }
 
     /// The scalar inputs, in the order of `State::inputs`.

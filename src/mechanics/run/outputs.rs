@@ -3,7 +3,7 @@
 //! ```text
 //! body:  r = φ − R c,  R = [d₁ d₂ d₃],  v = v̂_φ − Σᵢ cᵢ v̂_dᵢ,  w = ½ Σᵢ dᵢ × v̂_dᵢ   (v̂: projected)
 //! site:  r_s = r + R p,  R_s = R R_p,  v_s = v + w × R p,  w_s = w   (p, R_p: site in body)
-//! E = Σ ½ vₙᵀ M vₙ − m g·φ + springs,   p = Σ m v_φ,   L = Σ (φ × m v_φ + Σᵢ dᵢ × pᵢ)
+//! E = Σ ½ vₙᵀ M vₙ − m g·φ + springs + stops,   p = Σ m v_φ,   L = Σ (φ × m v_φ + Σᵢ dᵢ × pᵢ)
 //! ```
 // index loops over coupled fixed-size arrays read closer to the formulas than iterator chains
 #![allow(clippy::needless_range_loop)]
@@ -144,10 +144,11 @@ pub(crate) fn update(
             match dof {
                 DofRt::Slide(row) => {
                     let s = row.eval(&qa, &qb);
-                    energy += 0.5 * k * s * s;
+                    energy += 0.5 * k * s * s + jt.stops.map_or(0.0, |st| st.energy(s));
                 }
                 DofRt::Turn(_) => {
-                    energy += 0.5 * k * angles[turn] * angles[turn];
+                    let t = angles[turn];
+                    energy += 0.5 * k * t * t + jt.stops.map_or(0.0, |st| st.energy(t));
                     turn += 1;
                 }
             }

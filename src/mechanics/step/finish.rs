@@ -4,7 +4,8 @@
 //! ```text
 //! a_b   = Δq_b − h vₙ,b                      (12 per body; v_{n+1} = vₙ + 2a/h in the caller)
 //! θ_b   = ½ Σᵢ d̄ⁱ × Δdᵢ                      (rotation increment, rad, world frame)
-//! W     = Σ f·Δφ + Σ m·θ_b + Σ_joints (τ n̄·(θ_B − θ_A) + F Δs − c Δs²/h − c Δϑ²/h …)
+//! W     = Σ f·Δφ + Σ m·θ_b + Σ_joints (τ n̄·(θ_B − θ_A) + F Δs − c Δs²/h − c Δϑ²/h
+//!         − c_stop p̄ Δϑ²/h …)                (τ, F clamped to ±effort)
 //! ϑ_{n+1} = ϑₙ + Δϑ                          (unwrapped joint angles)
 //! ```
 //!
@@ -57,13 +58,18 @@ pub(crate) fn finish(model: &Model, ws: &mut Work, held: &Held, h: f64) -> f64 {
         let k_s = held.stiffness[j];
         let mut turn = jt.turn0;
         for (dk, dof) in jt.dofs.iter().enumerate() {
-            let act = jt.input.map_or(0.0, |i| actuator_input(dk, held.inputs, i));
+            let act = jt
+                .input
+                .map_or(0.0, |i| actuator_input(dk, held.inputs, i, jt.effort));
             match dof {
                 DofRt::Slide(row) => {
                     let s0 = row.eval(&node(&ws.qn, a), &node(&ws.qn, Some(bb)));
                     let s1 = row.eval(&node(&ws.q, a), &node(&ws.q, Some(bb)));
                     let ds = s1 - s0;
                     work += act * ds - c_d * ds * ds / h;
+                    if let Some(st) = &jt.stops {
+                        work -= st.loss(s0, ds, h);
+                    }
                 }
                 DofRt::Turn(tr) => {
                     if act != 0.0 {
@@ -71,16 +77,18 @@ pub(crate) fn finish(model: &Model, ws: &mut Work, held: &Held, h: f64) -> f64 {
                         work += act * nbar.dot(&th_rel());
                     }
                     let t0 = ws.ang[turn];
-                    if k_s != 0.0 || c_d != 0.0 {
+                    if k_s != 0.0 || c_d != 0.0 || jt.stops.is_some() {
                         let (qa_n, qb_n) = (node(&ws.qn, a), node(&ws.qn, Some(bb)));
                         let (qa_bar, qb_bar) = (node(&ws.qbar, a), node(&ws.qbar, Some(bb)));
                         let (dqa, dqb) = (node(&ws.dq, a), node(&ws.dq, Some(bb)));
                         let (s0, c0) = (tr.sin.eval(&qa_n, &qb_n), tr.cos.eval(&qa_n, &qb_n));
                         let ds = row_increment(&tr.sin, &qa_bar, &qb_bar, &dqa, &dqb);
                         let dc = row_increment(&tr.cos, &qa_bar, &qb_bar, &dqa, &dqb);
-                        let st = turn_step([s0, c0], [ds, dc], t0, k_s, c_d, h);
+                        let stops = jt.stops.as_ref();
+                        let st = turn_step([s0, c0], [ds, dc], t0, k_s, c_d, stops, h);
                         ws.ang1[turn] = t0 + st.dt;
                         work -= c_d * st.dt * st.dt / h;
+                        work -= stops.map_or(0.0, |s| s.loss(t0, st.dt, h));
                     } else {
                         let (qa, qb) = (node(&ws.q, a), node(&ws.q, Some(bb)));
                         let t1 = tr.sin.eval(&qa, &qb).atan2(tr.cos.eval(&qa, &qb));

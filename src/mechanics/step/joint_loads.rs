@@ -1,5 +1,6 @@
 //! Joint loads of the Newton residual and Jacobian: actuators (consistent torques `±τ n̄` and
-//! slide forces), linear springs and viscous dampers on the joint coordinates (the midpoint
+//! slide forces, clamped to `±effort`), linear springs, viscous dampers and one-sided stops
+//! (`model::stops`) on the joint coordinates (the midpoint
 //! gradient of a slide, the `atan2` discrete gradient of `turn` for an angle, the rotation
 //! increments for a spherical joint), added to the node forces of the joint's two bodies and,
 //! in a Jacobian pass, to their coupling blocks (theory.md §4.2; residual scaled by `h²/2`).
@@ -120,7 +121,8 @@ impl Acc {
 /// Whether joint `j` carries any load (an actuator, a spring or a damper); most joints of a
 /// chain do not, and their load pass is skipped.
 pub(crate) fn loaded(model: &Model, held: &Held, j: usize) -> bool {
-    model.joints[j].input.is_some() || held.stiffness[j] != 0.0 || held.damping[j] != 0.0
+    let jt = &model.joints[j];
+    jt.input.is_some() || jt.stops.is_some() || held.stiffness[j] != 0.0 || held.damping[j] != 0.0
 }
 
 /// Adds the loads of joint `j` (stage size `h`, s) at the pair's iterate to `acc` (and the
@@ -173,7 +175,9 @@ pub(crate) fn joint_loads(
     let mut turn = jt.turn0;
     let mut sph_t = Vec3::zeros();
     for (dk, dof) in jt.dofs.iter().enumerate() {
-        let act = jt.input.map_or(0.0, |i| actuator_input(dk, held.inputs, i));
+        let act = jt
+            .input
+            .map_or(0.0, |i| actuator_input(dk, held.inputs, i, jt.effort));
         match dof {
             DofRt::Slide(row) => {
                 let qa_n = a.map_or(zero, |a| body_nodes(&ws.qn, a));
@@ -181,11 +185,12 @@ pub(crate) fn joint_loads(
                 let s0 = row.eval(&qa_n, &qb_n);
                 let s1 = row.eval(qa, qb);
                 let ds = s1 - s0;
-                let coef = act - 0.5 * k_s * (s0 + s1) - c_d * ds / h;
+                let (f_stop, df_stop) = jt.stops.map_or((0.0, 0.0), |st| st.force(s0, ds, h));
+                let coef = act - 0.5 * k_s * (s0 + s1) - c_d * ds / h + f_stop;
                 let grad = add_row(row, -hh * coef, fa, fb, &mut ws.cbody, cab);
-                if jac && (k_s != 0.0 || c_d != 0.0) {
-                    // rank-one term d(−hh·coef)/dx = hh (k/2 + c/h) ∇s(q) Q
-                    let kap = hh * (0.5 * k_s + c_d / h);
+                if jac && (k_s != 0.0 || c_d != 0.0 || df_stop != 0.0) {
+                    // rank-one term d(−hh·coef)/dx = hh (k/2 + c/h − ∂f_stop/∂s₁) ∇s(q) Q
+                    let kap = hh * (0.5 * k_s + c_d / h - df_stop);
                     let mut g1 = [Vec3::zeros(); 8];
                     row.gradient(qa, qb, &mut g1);
                     let cb_ = project(&grad[4..], dbar_b);
@@ -215,7 +220,7 @@ pub(crate) fn joint_loads(
                 // the angle step, and the spring and damper as the discrete gradient
                 // F = f β (c̄ ∇s(q̄) − s̄ ∇c(q̄)) of `turn`
                 let t0 = ws.ang[turn];
-                let loaded = k_s != 0.0 || c_d != 0.0;
+                let loaded = k_s != 0.0 || c_d != 0.0 || jt.stops.is_some();
                 if loaded {
                     let dqa = a.map_or(zero, |a| body_nodes(&ws.dq, a));
                     let dqb = body_nodes(&ws.dq, bb);
@@ -224,7 +229,7 @@ pub(crate) fn joint_loads(
                     let (s0, c0) = (tr.sin.eval(&qa_n, &qb_n), tr.cos.eval(&qa_n, &qb_n));
                     let ds = row_increment(&tr.sin, qa_bar, qb_bar, &dqa, &dqb);
                     let dc = row_increment(&tr.cos, qa_bar, qb_bar, &dqa, &dqb);
-                    let st = turn_step([s0, c0], [ds, dc], t0, k_s, c_d, h);
+                    let st = turn_step([s0, c0], [ds, dc], t0, k_s, c_d, jt.stops.as_ref(), h);
                     let gs = add_row(&tr.sin, -hh * st.fs, fa, fb, &mut ws.cbody, cab);
                     let gc = add_row(&tr.cos, -hh * st.fc, fa, fb, &mut ws.cbody, cab);
                     if jac {
@@ -305,7 +310,12 @@ pub(crate) fn joint_loads(
     }
 }
 
-/// Value of the actuator input driving dof `dk` of a joint whose inputs start at `first`.
-pub(crate) fn actuator_input(dk: usize, inputs: &[f64], first: usize) -> f64 {
-    inputs.get(first + dk).copied().unwrap_or(0.0)
+/// Value of the actuator input driving dof `dk` of a joint whose inputs start at `first`,
+/// clamped to `±effort`.
+pub(crate) fn actuator_input(dk: usize, inputs: &[f64], first: usize, effort: f64) -> f64 {
+    inputs
+        .get(first + dk)
+        .copied()
+        .unwrap_or(0.0)
+        .clamp(-effort, effort)
 }

@@ -40,6 +40,7 @@ fn joint(
         actuated: true,
         damping: 0.0,
         stiffness: 0.0,
+        limits: Default::default(),
         loop_closing: false,
         initial: JointInitial::Coords { q, qd },
     }

@@ -28,6 +28,7 @@
 use crate::math::{skew, Mat3, Vec3};
 use crate::mechanics::model::constraint::DotRow;
 use crate::mechanics::model::constraint::LinVec;
+use crate::mechanics::model::stops::Stops;
 
 /// `β = atan2(X, Y)/X` and its partial derivatives `(β, ∂β/∂X, ∂β/∂Y)`; by the series of
 /// `atan(z)/z` (`z = X/Y`) when `|X| ≤ 10⁻³ Y`, where the quotient would cancel.
@@ -63,8 +64,8 @@ pub(crate) struct TurnStep {
 }
 
 /// The angle step from `[s₀, c₀]` with increments `[Δs, Δc]`, and the spring (stiffness `k`,
-/// N·m/rad, about angle 0) and damper (`c_d`, N·m·s/rad) load for the start angle `t0` (rad)
-/// and stage size `h` (s).
+/// N·m/rad, about angle 0), damper (`c_d`, N·m·s/rad) and stop (`model::stops`) load for the
+/// start angle `t0` (rad) and stage size `h` (s).
 #[must_use]
 pub(crate) fn turn_step(
     [s0, c0]: [f64; 2],
@@ -72,6 +73,7 @@ pub(crate) fn turn_step(
     t0: f64,
     k: f64,
     c_d: f64,
+    stops: Option<&Stops>,
     h: f64,
 ) -> TurnStep {
     let x = c0 * ds - s0 * dc;
@@ -79,19 +81,20 @@ pub(crate) fn turn_step(
     let y = c0 * c1 + s0 * s1;
     let (b, bx, by) = beta(x, y);
     let dt = b * x;
-    if k == 0.0 && c_d == 0.0 {
+    if k == 0.0 && c_d == 0.0 && stops.is_none() {
         return TurnStep {
             dt,
             ..TurnStep::default()
         };
     }
-    let f = -k * (t0 + 0.5 * dt) - c_d * dt / h;
+    let (f_stop, df_stop) = stops.map_or((0.0, 0.0), |st| st.force(t0, dt, h));
+    let f = -k * (t0 + 0.5 * dt) - c_d * dt / h + f_stop;
     let (sb, cb) = (s0 + 0.5 * ds, c0 + 0.5 * dc);
     // ∂X/∂(s₁, c₁) = (c₀, −s₀), ∂Y/∂(s₁, c₁) = (s₀, c₀)
     let r = x * x + y * y;
     let ddt = [(y * c0 - x * s0) / r, (-y * s0 - x * c0) / r];
     let db = [bx * c0 + by * s0, -bx * s0 + by * c0];
-    let df = -(0.5 * k + c_d / h);
+    let df = -(0.5 * k + c_d / h) + df_stop;
     let fb = f * b;
     let mut jac = [0.0; 4];
     for v in 0..2 {
@@ -198,7 +201,7 @@ mod tests {
             let (s0, c0) = (t0.sin(), t0.cos());
             let t1: f64 = t0 + dt_true;
             let (ds, dc) = (t1.sin() - s0, t1.cos() - c0);
-            let st = turn_step([s0, c0], [ds, dc], t0, k, c, h);
+            let st = turn_step([s0, c0], [ds, dc], t0, k, c, None, h);
             assert!((st.dt - dt_true).abs() <= 1e-15 * (1.0 + t0.abs()) + 1e-12 * dt_true.abs());
             // F·Δq = fs Δs + fc Δc = −½k(t₁² − t₀²) − c Δt²/h
             let w = st.fs * ds + st.fc * dc;
@@ -212,8 +215,8 @@ mod tests {
             let e = 1e-7;
             for v in 0..2 {
                 let (a, b) = if v == 0 { (e, 0.0) } else { (0.0, e) };
-                let p = turn_step([s0, c0], [ds + a, dc + b], t0, k, c, h);
-                let m = turn_step([s0, c0], [ds - a, dc - b], t0, k, c, h);
+                let p = turn_step([s0, c0], [ds + a, dc + b], t0, k, c, None, h);
+                let m = turn_step([s0, c0], [ds - a, dc - b], t0, k, c, None, h);
                 let fs = (p.fs - m.fs) / (2.0 * e);
                 let fc = (p.fc - m.fc) / (2.0 * e);
                 assert!(

@@ -100,7 +100,56 @@ fn fields(report: &mut Report, p: &str, j: &JointSpec) {
             "spherical joints take no stiffness (there is no single angle to spring)",
         );
     }
+    limits(report, p, j);
     initial(report, p, j);
+}
+
+/// Checks the position limits, the effort limit and the stop parameters.
+fn limits(report: &mut Report, p: &str, j: &JointSpec) {
+    let fields = [
+        ("lower", j.lower),
+        ("upper", j.upper),
+        ("effort", j.effort),
+        ("stop_stiffness", j.stop_stiffness),
+        ("stop_damping", j.stop_damping),
+    ];
+    let limited = matches!(j.kind, JointKind::Revolute | JointKind::Prismatic);
+    for (field, v) in fields {
+        let Some(v) = v else { continue };
+        if !limited {
+            report.push(
+                format!("{p}.{field}"),
+                format!(
+                    "only revolute and prismatic joints take limits, not a {} joint",
+                    kind_name(j.kind)
+                ),
+            );
+        } else if !v.is_finite() {
+            report.push(format!("{p}.{field}"), format!("must be finite (got {v})"));
+        } else if field == "stop_damping" && v < 0.0 {
+            report.push(format!("{p}.{field}"), format!("must be >= 0 (got {v})"));
+        } else if matches!(field, "effort" | "stop_stiffness") && v <= 0.0 {
+            report.push(format!("{p}.{field}"), format!("must be > 0 (got {v})"));
+        }
+    }
+    if let (Some(lo), Some(hi)) = (j.lower, j.upper) {
+        if limited && lo >= hi {
+            report.push(
+                format!("{p}.upper"),
+                format!("must be greater than lower ({hi} <= {lo})"),
+            );
+        }
+    }
+    if limited && j.lower.is_none() && j.upper.is_none() {
+        for (field, v) in &fields[3..] {
+            if v.is_some() {
+                report.push(
+                    format!("{p}.{field}"),
+                    "the joint has no stops: set lower and/or upper",
+                );
+            }
+        }
+    }
 }
 
 /// Checks `initial` against the joint type.
