@@ -8,18 +8,22 @@
 //!   (as Pinocchio and MuJoCo do). `--floating-base` frees the base, `--fixed-base` welds a base
 //!   the URDF declares floating;
 //! - fixed joints merge the child's inertial into its parent's body (mass, centre of mass,
-//!   rotated inertia with the parallel-axis term; `--keep-fixed` keeps such links as bodies on
-//!   `fixed` joints); a link welded to the world carries nothing;
+//!   rotated inertia with the parallel-axis term) and make the child's frame a site
+//!   (`site.S.r`, `R`, `v`, `w`); `--keep-fixed` keeps such links as bodies on `fixed` joints;
+//!   a link welded to the world carries nothing;
 //! - `<inertial>` `origin xyz rpy`: the centre of mass and the axes of the inertia tensor in the
 //!   link frame (the tensor is rotated into the link axes); a link without `<inertial>` is
 //!   massless;
 //! - revolute and continuous joints become actuated `revolute` joints (input `joint.J.tau`),
 //!   prismatic ones actuated `prismatic` joints (`joint.J.f`), planar ones `planar` joints;
 //!   `<axis>` defaults to `1 0 0`; `<dynamics damping>` is the joint's damping;
-//! - not modelled yet, each reported as a note: `<dynamics friction>` (inactive), position
-//!   limits (no joint stops yet), `<limit effort>` (no clamp yet), `<mimic>` (the joints are
-//!   independent);
-//! - names are made identifiers deterministically (`names`).
+//! - `<limit lower upper>` of revolute and prismatic joints become joint stops and `effort`
+//!   clamps the actuator input (`--no-limits`: neither); placeholders (`lower = upper`,
+//!   `effort = 0`) are left out with a note;
+//! - not modelled, each reported as a note: `<dynamics friction>` (inactive), `<mimic>` (the
+//!   joints are independent);
+//! - names that are not identifiers are made identifiers deterministically (`names`), the
+//!   original name kept in the description of the element's variables.
 //!
 //! Errors name the file, the line and the element (`robot.urdf: line 57: joint "elbow": child
 //! link "forearm" does not exist`), all at once.
