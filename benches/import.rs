@@ -25,10 +25,9 @@ fn limb(out: &mut String, parent: &str, name: &str, n: usize, dir: f64) {
         );
         prev = link;
     }
-    let _ = write!(
+    let _ = writeln!(
         out,
-        r#"<link name="{name}_sensor"/><joint name="{name}_sensor_joint" type="fixed"><parent link="{prev}"/><child link="{name}_sensor"/><origin xyz="0 0 -0.05"/></joint>
-"#
+        r#"<link name="{name}_sensor"/><joint name="{name}_sensor_joint" type="fixed"><parent link="{prev}"/><child link="{name}_sensor"/><origin xyz="0 0 -0.05"/></joint>"#
     );
 }
 
