@@ -1,6 +1,7 @@
-//! The imported spec as editable TOML: the spec's own serialisation (numbers in shortest
-//! round-trip form, so reading it back gives the same spec and the same FMU), with a header
-//! and a comment before every body, joint and site naming the URDF elements it came from.
+//! The imported spec as editable TOML: the spec's own serialisation (numbers in their shortest
+//! round-trip form, `1e-10` rather than `0.0000000001`, so reading it back gives the same spec and
+//! the same FMU), with a header and a comment before every body, joint and site naming the URDF
+//! elements it came from.
 
 use super::lower::Outcome;
 use crate::spec::Spec;
@@ -65,10 +66,40 @@ pub fn to_toml(spec: &Spec, outcome: &Outcome) -> Result<String, String> {
             }
             _ => {}
         }
-        out.push_str(line);
+        out.push_str(&shortest_numbers(line));
         out.push('\n');
     }
     Ok(out)
+}
+
+/// `line` with every float written in the shorter of its two round-trip forms (`1e-10`, not
+/// `0.0000000001`); lines holding strings are left as they are.
+fn shortest_numbers(line: &str) -> String {
+    if line.contains(['"', '\'']) || !line.contains('=') {
+        return line.to_string();
+    }
+    let mut out = String::with_capacity(line.len());
+    let mut token = String::new();
+    let flush = |token: &mut String, out: &mut String| {
+        let short = token
+            .parse::<f64>()
+            .ok()
+            .filter(|_| token.contains('.'))
+            .map(|x| format!("{x:?}"))
+            .filter(|s| s.len() < token.len());
+        out.push_str(short.as_deref().unwrap_or(token));
+        token.clear();
+    };
+    for c in line.chars() {
+        if c.is_ascii_alphanumeric() || matches!(c, '.' | '-' | '+' | '_') {
+            token.push(c);
+        } else {
+            flush(&mut token, &mut out);
+            out.push(c);
+        }
+    }
+    flush(&mut token, &mut out);
+    out
 }
 
 /// Problems of an imported spec (validated after import) told in the URDF's terms: the path
