@@ -279,3 +279,24 @@ fn limits_become_stops_unless_placeholders_or_turned_off() {
         "{notes}"
     );
 }
+
+/// `<visual>` shapes (a link without one: its `<collision>`) are kept for the viewer on their
+/// host body, merged links' shapes moved into the host frame; a missing mesh file is not
+/// looked for.
+#[test]
+fn shapes_are_kept_on_their_host_bodies() {
+    let (spec, _) = import(&arm_text(), "arm.urdf", &ImportOptions::default()).unwrap();
+    spec.validate("arm.urdf").unwrap();
+    let on = |b: &str| spec.visual.iter().find(|v| v.body == b).unwrap();
+    assert_eq!(on("upper_arm").cuboid, Some([0.05, 0.05, 0.5]));
+    assert_eq!(on("upper_arm").rgba, Some([0.1, 0.2, 0.8, 1.0]));
+    assert_eq!(on("forearm").cylinder, Some([0.03, 0.4]));
+    // the tool's mesh sits on the forearm at the tool frame (the fixed joint's origin)
+    let mesh = spec.visual.iter().find(|v| v.mesh.is_some()).unwrap();
+    assert_eq!(mesh.body, "forearm");
+    assert_eq!(mesh.scale, Some([0.001; 3]));
+    assert!((Vec3::from(mesh.origin.xyz) - Vec3::new(0.0, 0.0, -0.4)).norm() < 1e-15);
+    let r = rpy_to_matrix(&Vec3::from(mesh.origin.rpy));
+    assert!((r - rpy_to_matrix(&Vec3::new(0.1, -0.2, 0.3))).amax() < 1e-15);
+    assert_eq!(spec.visual.len(), 3);
+}

@@ -182,6 +182,16 @@ const SITE: &[Field] = &[
     opt("origin", Check::Table(ORIGIN)),
     opt("description", TEXT),
 ];
+const VISUAL: &[Field] = &[
+    req("body", TEXT),
+    opt("origin", Check::Table(ORIGIN)),
+    opt("box", VEC3),
+    opt("cylinder", Check::Value(is::<[f64; 2]>)),
+    opt("sphere", NUM),
+    opt("mesh", TEXT),
+    opt("scale", VEC3),
+    opt("rgba", Check::Value(is::<[f64; 4]>)),
+];
 const TOP: &[Field] = &[
     req("name", TEXT),
     opt("description", TEXT),
@@ -192,6 +202,7 @@ const TOP: &[Field] = &[
     opt("joint", Check::Tables(JOINT)),
     opt("load", Check::Tables(LOAD)),
     opt("site", Check::Tables(SITE)),
+    opt("visual", Check::Tables(VISUAL)),
 ];
 
 fn join(path: &str, key: &str) -> String {

@@ -26,6 +26,7 @@
 //! | `[[joint]]` `initial = { q, qd }` | number or list | tree joints: coordinates and rates (zeros); spherical: `{ rpy \| quat, w }` |
 //! | `[[load]]` `body`, `torque`, `force` | name, bools | world-frame torque / force-at-COM inputs on a body |
 //! | `[[site]]` `name`, `body`, `origin = { xyz, rpy }` | identifier, a body, placement | a frame fixed on the body: outputs `site.S.r`, `R`, `v`, `w` |
+//! | `[[visual]]` `body`, `origin`, one of `box`, `cylinder`, `sphere`, `mesh` (+ `scale`), `rgba` | a body or `world`, placement, sizes in m | a shape for the 3-D viewer; no effect on the motion |
 //! | `description` of a body, joint or site | text | appended to the descriptions of its variables (original URDF names) |
 //!
 //! # Decisions beyond interface.md
@@ -55,7 +56,7 @@ mod values;
 pub use error::{Problem, SpecErrors};
 pub use schema::{
     BodySpec, Experiment, Format, InitialSpec, JointKind, JointSpec, LoadSpec, OriginSpec,
-    SiteSpec, SolverSpec, Spec, JOINT_TYPES,
+    SiteSpec, SolverSpec, Spec, VisualSpec, JOINT_TYPES,
 };
 pub use shipped::bundled;
 pub use values::{Coords, InertiaSpec, OrientationSpec};

@@ -49,6 +49,9 @@ pub struct Spec {
     /// Sites (`[[site]]`): named frames fixed on bodies, for reading poses.
     #[serde(default, skip_serializing_if = "Vec::is_empty")]
     pub site: Vec<SiteSpec>,
+    /// Shapes for the 3-D viewer (`[[visual]]`); no effect on the motion.
+    #[serde(default, skip_serializing_if = "Vec::is_empty")]
+    pub visual: Vec<VisualSpec>,
 }
 
 /// `[experiment]`: the FMU's DefaultExperiment and `triad simulate`'s defaults.
@@ -275,6 +278,36 @@ pub struct SiteSpec {
     /// link's original name when it is not an identifier).
     #[serde(default, skip_serializing_if = "String::is_empty")]
     pub description: String,
+}
+
+/// `[[visual]]`: a shape drawn by the 3-D viewer, fixed on a body (or the world); exactly one of
+/// `box`, `cylinder`, `sphere`, `mesh`. It has no mass and no effect on the motion.
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct VisualSpec {
+    /// The body it is fixed on, or `world`.
+    pub body: String,
+    /// The shape's frame in the body frame.
+    #[serde(default)]
+    pub origin: OriginSpec,
+    /// A box centred on the origin: full side lengths along x, y, z, m.
+    #[serde(rename = "box", default, skip_serializing_if = "Option::is_none")]
+    pub cuboid: Option<[f64; 3]>,
+    /// A cylinder along z centred on the origin: `[radius, length]`, m.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub cylinder: Option<[f64; 2]>,
+    /// A sphere centred on the origin: radius, m.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub sphere: Option<f64>,
+    /// A mesh file (`package://…`, relative to the model file, or absolute), as written.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub mesh: Option<String>,
+    /// Scale of a mesh along x, y, z (default 1).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub scale: Option<[f64; 3]>,
+    /// Colour, red, green, blue, alpha in [0, 1].
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub rgba: Option<[f64; 4]>,
 }
 
 /// `[[load]]`: external inputs on a body (world frame; the force acts at the centre of mass).

@@ -234,6 +234,52 @@ fn sites(spec: &Spec, report: &mut Report, body_index: &HashMap<&str, usize>) {
     }
 }
 
+fn visuals(spec: &Spec, report: &mut Report, body_index: &HashMap<&str, usize>) {
+    for (i, v) in spec.visual.iter().enumerate() {
+        let p = format!("visual[{i}]");
+        if v.body != "world" && !body_index.contains_key(v.body.as_str()) {
+            let hint = did_you_mean(&v.body, body_index.keys().copied());
+            report.push(
+                format!("{p}.body"),
+                format!("no body named \"{}\"{hint}", v.body),
+            );
+        }
+        check_finite(
+            report,
+            &format!("{p}.origin"),
+            &[v.origin.xyz, v.origin.rpy].concat(),
+        );
+        let sizes: Vec<(&str, Vec<f64>)> = [
+            ("box", v.cuboid.map(|b| b.to_vec())),
+            ("cylinder", v.cylinder.map(|c| c.to_vec())),
+            ("sphere", v.sphere.map(|s| vec![s])),
+            ("mesh", v.mesh.as_ref().map(|_| Vec::new())),
+        ]
+        .into_iter()
+        .filter_map(|(k, s)| s.map(|s| (k, s)))
+        .collect();
+        if sizes.len() != 1 {
+            report.push(p.clone(), "give exactly one of box, cylinder, sphere, mesh");
+        }
+        for (k, s) in &sizes {
+            if s.iter().any(|x| !(x.is_finite() && *x >= 0.0)) {
+                report.push(format!("{p}.{k}"), "sizes must be finite and >= 0");
+            }
+        }
+        if v.scale.is_some() && v.mesh.is_none() {
+            report.push(format!("{p}.scale"), "only a mesh takes a scale");
+        }
+        for (k, x) in [
+            ("scale", v.scale.map(|s| s.to_vec())),
+            ("rgba", v.rgba.map(|c| c.to_vec())),
+        ] {
+            if let Some(x) = x {
+                check_finite(report, &format!("{p}.{k}"), &x);
+            }
+        }
+    }
+}
+
 /// Every check that needs only the spec (no mechanics).
 pub(crate) fn structure(spec: &Spec) -> Report {
     let mut report = Report::default();
@@ -257,6 +303,7 @@ pub(crate) fn structure(spec: &Spec) -> Report {
         spec.site.iter().map(|s| s.name.as_str()),
     );
     sites(spec, &mut report, &body_index);
+    visuals(spec, &mut report, &body_index);
     if spec.body.is_empty() {
         report.push("body", "the model has no bodies: add at least one [[body]]");
     }

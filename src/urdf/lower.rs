@@ -14,11 +14,11 @@ use std::collections::HashMap;
 
 use super::names::Namer;
 use super::options::{Base, ImportOptions};
-use super::robot::{at, Inertial, JointType, Pose, Robot};
+use super::robot::{at, Geometry, Inertial, JointType, Pose, Robot, Shape};
 use crate::math::{matrix_to_rpy, rpy_to_matrix, Mat3, Vec3};
 use crate::spec::{
     BodySpec, InertiaSpec, JointKind, JointSpec, OrientationSpec, OriginSpec, Problem, SiteSpec,
-    Spec,
+    Spec, VisualSpec,
 };
 
 /// A rigid placement: rotation and translation (frame in its host frame).
@@ -244,6 +244,7 @@ pub(crate) fn spec(
         joint: Vec::new(),
         load: Vec::new(),
         site: Vec::new(),
+        visual: Vec::new(),
     };
     match roots.as_slice() {
         [_] => {}
@@ -478,6 +479,19 @@ pub(crate) fn spec(
             parts[b].push(placed(inertial, &h.frame));
         }
     }
+    // the shapes, each in its host body's frame (or the world's)
+    for (l, link) in robot.links.iter().enumerate() {
+        let Some(h) = host[l] else { continue };
+        for shape in &link.shapes {
+            let written = h.frame.is_identity().then_some(&shape.origin);
+            spec.visual.push(visual(
+                shape,
+                h.body
+                    .map_or_else(|| "world".to_string(), |b| spec.body[b].name.clone()),
+                h.frame.then(&Iso::of(&shape.origin)).origin(written),
+            ));
+        }
+    }
     for (b, p) in parts.iter().enumerate() {
         let (m, c, j) = merge(p);
         let j = clean(j, m);
@@ -537,4 +551,28 @@ fn limits(
         }
         (lo, hi) => (lo, hi, effort),
     }
+}
+
+/// The spec's `[[visual]]` of a URDF shape on `body`, placed at `origin`.
+fn visual(shape: &Shape, body: String, origin: OriginSpec) -> VisualSpec {
+    let mut v = VisualSpec {
+        body,
+        origin,
+        cuboid: None,
+        cylinder: None,
+        sphere: None,
+        mesh: None,
+        scale: None,
+        rgba: shape.rgba,
+    };
+    match &shape.geometry {
+        Geometry::Box(s) => v.cuboid = Some(*s),
+        Geometry::Cylinder(c) => v.cylinder = Some(*c),
+        Geometry::Sphere(r) => v.sphere = Some(*r),
+        Geometry::Mesh(uri, scale) => {
+            v.mesh = Some(uri.clone());
+            v.scale = (*scale != [1.0; 3]).then_some(*scale);
+        }
+    }
+    v
 }

@@ -20,6 +20,8 @@
 //! - `<limit lower upper>` of revolute and prismatic joints become joint stops and `effort`
 //!   clamps the actuator input (`--no-limits`: neither); placeholders (`lower = upper`,
 //!   `effort = 0`) are left out with a note;
+//! - `<visual>` shapes (or a link's `<collision>` shapes when it has no visual) become
+//!   `[[visual]]` entries on the host body for the viewer; mesh files are never opened;
 //! - not modelled, each reported as a note: `<dynamics friction>` (inactive), `<mimic>` (the
 //!   joints are independent);
 //! - names that are not identifiers are made identifiers deterministically (`names`), the

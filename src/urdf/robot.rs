@@ -21,6 +21,26 @@ pub(crate) struct Inertial {
     pub inertia: [f64; 6],
 }
 
+/// The geometry of a `<visual>` or `<collision>` (m).
+#[derive(Clone, Debug, PartialEq)]
+pub(crate) enum Geometry {
+    Box([f64; 3]),
+    /// Radius, length (along z).
+    Cylinder([f64; 2]),
+    Sphere(f64),
+    /// The URI as written (`package://`, relative or absolute) and its scale.
+    Mesh(String, [f64; 3]),
+}
+
+/// A `<visual>` (or, for a link without any, a `<collision>`): its frame in the link frame, its
+/// geometry and the colour of its `<material>` when given inline.
+#[derive(Clone, Debug, PartialEq)]
+pub(crate) struct Shape {
+    pub origin: Pose,
+    pub geometry: Geometry,
+    pub rgba: Option<[f64; 4]>,
+}
+
 /// `<link>`.
 #[derive(Clone, Debug)]
 pub(crate) struct Link {
@@ -28,6 +48,8 @@ pub(crate) struct Link {
     pub line: usize,
     /// None: a link without `<inertial>` (massless).
     pub inertial: Option<Inertial>,
+    /// What the link looks like, for the viewer.
+    pub shapes: Vec<Shape>,
 }
 
 /// URDF joint types.
@@ -134,6 +156,37 @@ fn origin(e: &Element, whose: &str, problems: &mut Vec<Problem>) -> Pose {
     e.first("origin").map_or_else(Pose::default, |o| Pose {
         xyz: numbers(o, "xyz", [0.0; 3], whose, problems),
         rpy: numbers(o, "rpy", [0.0; 3], whose, problems),
+    })
+}
+
+/// A `<visual>` or `<collision>`; `None` without a geometry triad can draw (a missing mesh file
+/// is not looked for: the URI is kept as written).
+fn shape(e: &Element, whose: &str, problems: &mut Vec<Problem>) -> Option<Shape> {
+    let g = e.first("geometry")?;
+    let geometry = if let Some(b) = g.first("box") {
+        Geometry::Box(numbers(b, "size", [0.0; 3], whose, problems))
+    } else if let Some(c) = g.first("cylinder") {
+        Geometry::Cylinder([
+            number(c, "radius", whose, problems).unwrap_or(0.0),
+            number(c, "length", whose, problems).unwrap_or(0.0),
+        ])
+    } else if let Some(s) = g.first("sphere") {
+        Geometry::Sphere(number(s, "radius", whose, problems).unwrap_or(0.0))
+    } else {
+        let m = g.first("mesh")?;
+        Geometry::Mesh(
+            m.attr("filename").unwrap_or_default().to_string(),
+            numbers(m, "scale", [1.0; 3], whose, problems),
+        )
+    };
+    let rgba = e
+        .first("material")
+        .and_then(|m| m.first("color"))
+        .map(|c| numbers(c, "rgba", [0.7, 0.7, 0.7, 1.0], whose, problems));
+    Some(Shape {
+        origin: origin(e, whose, problems),
+        geometry,
+        rgba,
     })
 }
 
@@ -295,10 +348,21 @@ pub(crate) fn robot(root: &Element, problems: &mut Vec<Problem>) -> Robot {
         }
         let whose = format!("link \"{name}\"");
         let inertial = e.first("inertial").map(|i| inertial(i, &whose, problems));
+        let mut shapes: Vec<Shape> = e
+            .all("visual")
+            .filter_map(|v| shape(v, &whose, problems))
+            .collect();
+        if shapes.is_empty() {
+            shapes = e
+                .all("collision")
+                .filter_map(|v| shape(v, &whose, problems))
+                .collect();
+        }
         robot.links.push(Link {
             name,
             line: e.line,
             inertial,
+            shapes,
         });
     }
     for e in root.all("joint") {

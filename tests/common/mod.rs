@@ -156,6 +156,7 @@ pub fn joint(
         actuated: false,
         damping: 0.0,
         stiffness: 0.0,
+        limits: Default::default(),
         loop_closing: false,
         initial: JointInitial::Coords {
             q: vec![],
