@@ -31,8 +31,8 @@ use crate::mechanics::model::kernels::rotation_increment;
 use crate::mechanics::model::runtime::{DofRt, Model};
 
 /// Fills `ws.acc`, `ws.theta` and `ws.ang1` at the converged iterate `ws.q` (increments
-/// `ws.dq`) of a stage of size `h` (s); returns the stage's discrete work of the inputs minus
-/// the energy its dampers dissipated (J).
+/// `ws.dq`) of a stage of size `h` (s) and adds each joint's damper loss to `ws.loss`; returns
+/// the stage's discrete work of the inputs minus the energy its dampers dissipated (J).
 pub(crate) fn finish(model: &Model, ws: &mut Work, held: &Held, h: f64) -> f64 {
     let nb = model.bodies.len();
     ws.set_midpoint();
@@ -56,6 +56,8 @@ pub(crate) fn finish(model: &Model, ws: &mut Work, held: &Held, h: f64) -> f64 {
             || read3(&ws.theta, 3 * bb) - a.map_or(Vec3::zeros(), |a| read3(&ws.theta, 3 * a));
         let c_d = held.damping[j];
         let k_s = held.stiffness[j];
+        // what this joint's dampers give back (≤ 0 in a forward stage)
+        let mut gained = 0.0;
         let mut turn = jt.turn0;
         for (dk, dof) in jt.dofs.iter().enumerate() {
             let act = jt
@@ -66,10 +68,8 @@ pub(crate) fn finish(model: &Model, ws: &mut Work, held: &Held, h: f64) -> f64 {
                     let s0 = row.eval(&node(&ws.qn, a), &node(&ws.qn, Some(bb)));
                     let s1 = row.eval(&node(&ws.q, a), &node(&ws.q, Some(bb)));
                     let ds = s1 - s0;
-                    work += act * ds - c_d * ds * ds / h;
-                    if let Some(st) = &jt.stops {
-                        work -= st.loss(s0, ds, h);
-                    }
+                    work += act * ds;
+                    gained -= c_d * ds * ds / h + jt.stops.map_or(0.0, |st| st.loss(s0, ds, h));
                 }
                 DofRt::Turn(tr) => {
                     if act != 0.0 {
@@ -87,8 +87,8 @@ pub(crate) fn finish(model: &Model, ws: &mut Work, held: &Held, h: f64) -> f64 {
                         let stops = jt.stops.as_ref();
                         let st = turn_step([s0, c0], [ds, dc], t0, k_s, c_d, stops, h);
                         ws.ang1[turn] = t0 + st.dt;
-                        work -= c_d * st.dt * st.dt / h;
-                        work -= stops.map_or(0.0, |s| s.loss(t0, st.dt, h));
+                        gained -=
+                            c_d * st.dt * st.dt / h + stops.map_or(0.0, |s| s.loss(t0, st.dt, h));
                     } else {
                         let (qa, qb) = (node(&ws.q, a), node(&ws.q, Some(bb)));
                         let t1 = tr.sin.eval(&qa, &qb).atan2(tr.cos.eval(&qa, &qb));
@@ -100,7 +100,7 @@ pub(crate) fn finish(model: &Model, ws: &mut Work, held: &Held, h: f64) -> f64 {
         }
         if let Some(axes) = &jt.sph_axes {
             let rel = th_rel();
-            work -= c_d * rel.norm_squared() / h;
+            gained -= c_d * rel.norm_squared() / h;
             for (k, ax) in axes.iter().enumerate() {
                 let act = jt.input.map_or(0.0, |i| held.inputs[i + k]);
                 if act != 0.0 {
@@ -109,6 +109,10 @@ pub(crate) fn finish(model: &Model, ws: &mut Work, held: &Held, h: f64) -> f64 {
                 }
             }
         }
+        work += gained;
+        let l = &mut ws.loss[j];
+        l[0] -= gained;
+        l[1] += gained.abs();
     }
     for b in 0..nb {
         for &(tb, at) in model.body_torques.iter().filter(|t| t.0 == b) {

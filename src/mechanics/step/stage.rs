@@ -59,9 +59,32 @@ pub(crate) fn compose(
         &[1.0]
     };
     let order4 = stages.len() > 1;
+    ws.loss.fill([0.0; 2]);
     for (k, &g) in stages.iter().enumerate() {
         let table = if order4 { 1 + k } else { 0 };
         robust_stage(model, ws, held, g * h, Some(table), 0, stats)?;
+    }
+    if order4 {
+        dampers_took_energy(model, ws)?;
+    }
+    Ok(())
+}
+
+/// Share of a joint's stage losses by which their sum may fall below zero before the step is
+/// refused (round-off is far below it; an amplified mode is at −4e-3 or beyond).
+const GAIN_SHARE: f64 = 1e-6;
+
+/// The dampers of every joint took energy over the composed step, as damping must. A damper
+/// gives energy back inside the backward stage (`γ₂ h < 0`); for a stiff enough damped mode
+/// (`λ h` within about 1.13–1.20 for a linear damper, `λ` its rate) that stage amplifies the
+/// mode beyond what the outer stages take, and the step would report growing motion as
+/// damped. Such a step is refused: `fmi2Discard`, with the joint named.
+fn dampers_took_energy(model: &Model, ws: &Work) -> Result<(), StepError> {
+    for (j, [net, magnitude]) in ws.loss.iter().enumerate() {
+        if *net < -GAIN_SHARE * magnitude {
+            let name = model.def().joints.get(j).map_or("?", |d| d.name.as_str());
+            return Err(StepError::DampingAmplified(name.to_string()));
+        }
     }
     Ok(())
 }
