@@ -125,38 +125,62 @@ fn inputs(b: &mut Builder, def: &ModelDef) {
     }
 }
 
+/// The parts of a frame's outputs.
+#[derive(Clone, Copy)]
+enum Part {
+    R,
+    Rot,
+    V,
+    W,
+}
+
+/// `{kind}.{n}.r[i]`, `R[i,j]`, `v[i]`, `w[i]` of a body or site frame (world frame), their
+/// accessors made by `acc(part, i, j)`.
+fn frame_outputs(
+    b: &mut Builder,
+    kind: &str,
+    n: &str,
+    acc: impl Fn(Part, usize, usize) -> Accessor,
+) {
+    for (i, c) in XYZ.iter().enumerate() {
+        b.output(
+            format!("{kind}.{n}.r[{}]", i + 1),
+            "m",
+            format!("origin of {kind} {n}'s frame, {c} component, world frame"),
+            acc(Part::R, i, 0),
+        );
+    }
+    for i in 0..3 {
+        for j in 0..3 {
+            b.output(format!("{kind}.{n}.R[{},{}]", i + 1, j + 1), "1", format!("rotation world <- {kind} {n}, row {} column {} (column j is {kind} axis j in world coordinates)", i + 1, j + 1), acc(Part::Rot, i, j));
+        }
+    }
+    for (i, c) in XYZ.iter().enumerate() {
+        b.output(
+            format!("{kind}.{n}.v[{}]", i + 1),
+            "m/s",
+            format!("velocity of {kind} {n}'s frame origin, {c} component, world frame"),
+            acc(Part::V, i, 0),
+        );
+    }
+    for (i, c) in XYZ.iter().enumerate() {
+        b.output(
+            format!("{kind}.{n}.w[{}]", i + 1),
+            "rad/s",
+            format!("angular velocity of {kind} {n}, {c} component, world frame"),
+            acc(Part::W, i, 0),
+        );
+    }
+}
+
 fn outputs(b: &mut Builder, def: &ModelDef) {
     for (body, bd) in def.bodies.iter().enumerate() {
-        let n = &bd.name;
-        for (i, c) in XYZ.iter().enumerate() {
-            b.output(
-                format!("body.{n}.r[{}]", i + 1),
-                "m",
-                format!("origin of body {n}'s frame, {c} component, world frame"),
-                Accessor::BodyR { body, i },
-            );
-        }
-        for i in 0..3 {
-            for j in 0..3 {
-                b.output(format!("body.{n}.R[{},{}]", i + 1, j + 1), "1", format!("rotation world <- body {n}, row {} column {} (column j is body axis j in world coordinates)", i + 1, j + 1), Accessor::BodyRot { body, i, j });
-            }
-        }
-        for (i, c) in XYZ.iter().enumerate() {
-            b.output(
-                format!("body.{n}.v[{}]", i + 1),
-                "m/s",
-                format!("velocity of body {n}'s frame origin, {c} component, world frame"),
-                Accessor::BodyV { body, i },
-            );
-        }
-        for (i, c) in XYZ.iter().enumerate() {
-            b.output(
-                format!("body.{n}.w[{}]", i + 1),
-                "rad/s",
-                format!("angular velocity of body {n}, {c} component, world frame"),
-                Accessor::BodyW { body, i },
-            );
-        }
+        frame_outputs(b, "body", &bd.name, |part, i, j| match part {
+            Part::R => Accessor::BodyR { body, i },
+            Part::Rot => Accessor::BodyRot { body, i, j },
+            Part::V => Accessor::BodyV { body, i },
+            Part::W => Accessor::BodyW { body, i },
+        });
     }
     for (joint, j) in def.joints.iter().enumerate() {
         let n = &j.name;
@@ -194,37 +218,12 @@ fn outputs(b: &mut Builder, def: &ModelDef) {
         }
     }
     for (site, sd) in def.sites.iter().enumerate() {
-        let n = &sd.name;
-        let on = def.bodies.get(sd.body).map_or("?", |b| b.name.as_str());
-        for (i, c) in XYZ.iter().enumerate() {
-            b.output(
-                format!("site.{n}.r[{}]", i + 1),
-                "m",
-                format!("origin of site {n} (fixed on body {on}), {c} component, world frame"),
-                Accessor::SiteR { site, i },
-            );
-        }
-        for i in 0..3 {
-            for j in 0..3 {
-                b.output(format!("site.{n}.R[{},{}]", i + 1, j + 1), "1", format!("rotation world <- site {n}, row {} column {} (column j is site axis j in world coordinates)", i + 1, j + 1), Accessor::SiteRot { site, i, j });
-            }
-        }
-        for (i, c) in XYZ.iter().enumerate() {
-            b.output(
-                format!("site.{n}.v[{}]", i + 1),
-                "m/s",
-                format!("velocity of site {n}'s origin, {c} component, world frame"),
-                Accessor::SiteV { site, i },
-            );
-        }
-        for (i, c) in XYZ.iter().enumerate() {
-            b.output(
-                format!("site.{n}.w[{}]", i + 1),
-                "rad/s",
-                format!("angular velocity of site {n}, {c} component, world frame"),
-                Accessor::SiteW { site, i },
-            );
-        }
+        frame_outputs(b, "site", &sd.name, |part, i, j| match part {
+            Part::R => Accessor::SiteR { site, i },
+            Part::Rot => Accessor::SiteRot { site, i, j },
+            Part::V => Accessor::SiteV { site, i },
+            Part::W => Accessor::SiteW { site, i },
+        });
     }
     b.output(
         "system.energy".into(),
