@@ -110,9 +110,7 @@ pub(crate) fn finish(model: &Model, ws: &mut Work, held: &Held, h: f64) -> f64 {
             }
         }
         work += gained;
-        let l = &mut ws.loss[j];
-        l[0] -= gained;
-        l[1] += gained.abs();
+        ws.loss[j] -= gained;
     }
     for b in 0..nb {
         for &(tb, at) in model.body_torques.iter().filter(|t| t.0 == b) {

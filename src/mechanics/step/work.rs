@@ -99,8 +99,8 @@ pub(crate) struct Work {
     /// Accumulated work at the stage start, J.
     pub work: f64,
     /// Per joint, the energy its dampers (viscous and stop) took over the stages of the
-    /// current step so far, J (negative inside a backward stage), and the sum of its magnitudes.
-    pub loss: Vec<[f64; 2]>,
+    /// current step so far, J (a backward stage adds a negative amount).
+    pub loss: Vec<f64>,
     /// Predictor history: backward differences of the mean rates `(Δφ/h, θ/h)` of the last
     /// [`HISTORY`] stages, `[table][difference][body][6]` (see `predictor`).
     pub hist: Vec<f64>,
@@ -183,7 +183,7 @@ impl Work {
             lam: vec![0.0; nr],
             ang: model.angles0.clone(),
             work: 0.0,
-            loss: vec![[0.0; 2]; model.joints.len()],
+            loss: vec![0.0; model.joints.len()],
             hist: vec![0.0; history_len(model)],
             hprev: [[0.0; HISTORY]; TABLES],
             memory: Memory::default(),
