@@ -187,8 +187,13 @@ pub(crate) fn joint_loads(
                 let ds = s1 - s0;
                 let (f_stop, df_stop) = jt.stops.map_or((0.0, 0.0), |st| st.force(s0, ds, h));
                 let coef = act - 0.5 * k_s * (s0 + s1) - c_d * ds / h + f_stop;
+                let stiff = k_s != 0.0 || c_d != 0.0 || df_stop != 0.0;
+                if coef == 0.0 && !stiff {
+                    // idle, or stops that neither end of the step has reached
+                    continue;
+                }
                 let grad = add_row(row, -hh * coef, fa, fb, &mut ws.cbody, cab);
-                if jac && (k_s != 0.0 || c_d != 0.0 || df_stop != 0.0) {
+                if jac && stiff {
                     // rank-one term d(−hh·coef)/dx = hh (k/2 + c/h − ∂f_stop/∂s₁) ∇s(q) Q
                     let kap = hh * (0.5 * k_s + c_d / h - df_stop);
                     let mut g1 = [Vec3::zeros(); 8];
@@ -230,6 +235,11 @@ pub(crate) fn joint_loads(
                     let ds = row_increment(&tr.sin, qa_bar, qb_bar, &dqa, &dqb);
                     let dc = row_increment(&tr.cos, qa_bar, qb_bar, &dqa, &dqb);
                     let st = turn_step([s0, c0], [ds, dc], t0, k_s, c_d, jt.stops.as_ref(), h);
+                    if st.fs == 0.0 && st.fc == 0.0 && st.jac == [0.0; 4] {
+                        // stops that neither end of the step has reached, and nothing else
+                        turn += 1;
+                        continue;
+                    }
                     let gs = add_row(&tr.sin, -hh * st.fs, fa, fb, &mut ws.cbody, cab);
                     let gc = add_row(&tr.cos, -hh * st.fc, fa, fb, &mut ws.cbody, cab);
                     if jac {

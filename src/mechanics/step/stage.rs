@@ -61,12 +61,19 @@ pub(crate) fn compose(
     };
     let order4 = stages.len() > 1;
     ws.loss.fill(0.0);
-    let kinetic0 = if order4 { kinetic(model, &ws.vn) } else { 0.0 };
+    // only dampers can give energy back: models without any skip the check
+    let guard = order4
+        && (held.damping.iter().any(|&c| c != 0.0)
+            || model
+                .joints
+                .iter()
+                .any(|j| j.stops.is_some_and(|s| s.damping != 0.0)));
+    let kinetic0 = if guard { kinetic(model, &ws.vn) } else { 0.0 };
     for (k, &g) in stages.iter().enumerate() {
         let table = if order4 { 1 + k } else { 0 };
         robust_stage(model, ws, held, g * h, Some(table), 0, stats)?;
     }
-    if order4 {
+    if guard {
         dampers_took_energy(model, ws, kinetic0.max(kinetic(model, &ws.vn)))?;
     }
     Ok(())
