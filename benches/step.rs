@@ -33,6 +33,7 @@ fn setup(def: &ModelDef) -> (Model, State) {
         order: 2,
         tolerance: 1e-10,
         max_iterations: 20,
+        ..SolverSettings::default()
     };
     let m = Model::new(def, s).expect("model");
     let st = State::new(&m);

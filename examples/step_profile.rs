@@ -57,6 +57,7 @@ fn main() {
         },
         tolerance: 1e-10,
         max_iterations: 20,
+        ..SolverSettings::default()
     };
     let t_build = std::time::Instant::now();
     let mut m = Model::new(&def, s).expect("model");

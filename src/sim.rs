@@ -1,15 +1,50 @@
 //! One simulation run shared by `triad simulate` and the FMU: communication steps made of equal
 //! internal sub-steps, with roll-back on failure. Both front ends call this, so their results are
 //! identical by construction.
+//!
+//! Three guards keep every accepted step meaningful:
+//! - a communication step shorter than [`MIN_STEP_RATIO`]` × max_step` is not integrated (the
+//!   velocities of so short a step are dominated by the round-off of the positions, ~ε|q|/h):
+//!   the time advances and the span is carried as the state's lag into the next step, whose
+//!   sub-steps then cover it; the bodies lag the clock by less than that span, and every step
+//!   taken is still an energy–momentum step, so the invariants stay exact;
+//! - a communication step needing more than `max_substeps` sub-steps takes that many and stops,
+//!   reporting the time reached ([`Failure::WorkBound`]);
+//! - a step whose outputs are not all finite is rolled back ([`Failure::NonFinite`]).
 
 use crate::mechanics::{step_state, Model, ModelDef, ModelError, SolverSettings, State, StepError};
+use thiserror::Error;
+
+/// A communication step shorter than this fraction of `max_step` is carried into the next one
+/// instead of being integrated on its own (1 ns at the default `max_step` of 1 ms).
+pub const MIN_STEP_RATIO: f64 = 1e-6;
 
 /// Why a communication step stopped short.
+#[derive(Debug, Error, Clone, PartialEq)]
+pub enum Failure {
+    /// A sub-step failed (the state is rolled back to the start of the communication step).
+    #[error(transparent)]
+    Step(#[from] StepError),
+    /// The step needed more sub-steps than `solver.max_substeps`; it took that many.
+    #[error("the step needs {needed} sub-steps of at most max_step, more than solver.max_substeps = {bound}; it stopped after {bound}")]
+    WorkBound {
+        /// Sub-steps the whole communication step needs.
+        needed: f64,
+        /// `solver.max_substeps`.
+        bound: u32,
+    },
+    /// An output became NaN or infinite (the state is rolled back).
+    #[error("non-finite output ({0})")]
+    NonFinite(String),
+}
+
+/// Why a communication step stopped short, and where the run stands.
 #[derive(Debug, Clone, PartialEq)]
 pub struct AdvanceError {
-    /// The sub-step failure.
-    pub error: StepError,
-    /// Time of the last good state, to which the run was rolled back, s.
+    /// What went wrong.
+    pub error: Failure,
+    /// Time of the last good state, at which the run now stands, s: the start of the
+    /// communication step after a roll-back, the progress made after [`Failure::WorkBound`].
     pub last_good_time: f64,
 }
 
@@ -87,67 +122,100 @@ impl Simulation {
         self.state.time()
     }
 
-    /// Number of equal sub-steps used for a communication step `h`: `ceil(h / max_step)`
-    /// (at least 1), with a relative slack of 1e-9 so that `h = k·max_step` takes exactly k.
+    /// Number of equal sub-steps for an integrated span `h`: `ceil(h / max_step)` (at least 1),
+    /// with a relative slack of 1e-9 so that `h = k·max_step` takes exactly k; as a float, so
+    /// that a span of 1e300 s is counted, not wrapped.
     #[must_use]
-    pub fn substeps(&self, h: f64) -> usize {
+    pub fn substeps(&self, h: f64) -> f64 {
         let ratio = h / self.model.settings().max_step;
         let n = (ratio * (1.0 - 1e-9)).ceil();
-        if n.is_finite() && n >= 1.0 {
-            n as usize
+        if n >= 1.0 {
+            n
         } else {
-            1
+            1.0
         }
     }
 
-    /// Advances by the communication step `h` in `substeps(h)` equal sub-steps, landing on
-    /// `t + h` exactly (the last sub-step ends at the float `t + h`). Inputs are held constant.
+    /// Advances by the communication step `h`, landing on `t + h` exactly (the last sub-step
+    /// ends at the float `t + h`). Inputs are held constant. The span integrated is `h` plus the
+    /// lag carried from earlier steps too short to integrate (module docs), in `substeps` equal
+    /// sub-steps; a span shorter than [`MIN_STEP_RATIO`]` × max_step` is carried on instead.
     ///
     /// # Errors
-    /// On a failed sub-step the state is rolled back to the start of this communication step and
-    /// the error says why.
+    /// On a failed sub-step or a non-finite output the state is rolled back to the start of this
+    /// communication step; past `max_substeps` sub-steps the run stops where it got to. The
+    /// error says which and when.
     pub fn advance(&mut self, h: f64) -> Result<(), AdvanceError> {
-        self.advance_state(h)?;
-        // outputs once per communication step, after the last sub-step
-        self.state.refresh_outputs(&self.model);
-        Ok(())
+        let result = self.advance_state(h);
+        let moved = match &result {
+            Ok(moved) => *moved,
+            Err(e) => matches!(e.error, Failure::WorkBound { .. }),
+        };
+        if moved {
+            // outputs once per communication step, after the last sub-step
+            self.state.refresh_outputs(&self.model);
+            if let Some(what) = self.state.outputs().first_non_finite() {
+                self.state.clone_from(&self.saved);
+                return Err(AdvanceError {
+                    error: Failure::NonFinite(what),
+                    last_good_time: self.state.time(),
+                });
+            }
+        }
+        result.map(drop)
     }
 
     /// [`Simulation::advance`] without the refresh of the outputs (velocity projection, energy,
     /// momenta, joint coordinates: about a third of a chain's step): the outputs keep the values
     /// of the last refresh until [`Simulation::refresh_outputs`] or an [`Simulation::advance`].
-    /// For drivers that step several times between reading outputs.
+    /// For drivers that step several times between reading outputs. Whether the bodies moved
+    /// (false: the step was carried on as lag).
     ///
     /// # Errors
-    /// As [`Simulation::advance`].
-    pub fn advance_state(&mut self, h: f64) -> Result<(), AdvanceError> {
+    /// As [`Simulation::advance`], less the check of the outputs.
+    pub fn advance_state(&mut self, h: f64) -> Result<bool, AdvanceError> {
         let t0 = self.state.time();
         if !(h.is_finite() && h > 0.0) {
             return Err(AdvanceError {
-                error: StepError::BadStep(h),
+                error: StepError::BadStep(h).into(),
                 last_good_time: t0,
             });
         }
-        let n = self.substeps(h);
-        // `step` leaves the state untouched when it fails, so only a communication step of
-        // several sub-steps needs its own roll-back copy
-        if n > 1 {
-            self.saved.clone_from(&self.state);
-        }
-        let dt = h / n as f64;
         let t_end = t0 + h;
-        for k in 0..n {
+        let span = self.state.lag() + h;
+        let settings = self.model.settings();
+        if span < MIN_STEP_RATIO * settings.max_step {
+            self.state.set_lag(span);
+            self.state.set_time(t_end);
+            return Ok(false);
+        }
+        let needed = self.substeps(span);
+        let bound = settings.max_substeps.max(1);
+        let n = needed.min(f64::from(bound)) as usize;
+        // the roll-back copy (a failed `step` leaves the state untouched, but earlier sub-steps
+        // and the lag must be undone too)
+        self.saved.clone_from(&self.state);
+        let dt = span / needed;
+        for _ in 0..n {
             if let Err(error) = step_state(&self.model, &mut self.state, dt) {
-                if k > 0 {
-                    self.state.clone_from(&self.saved);
-                }
+                self.state.clone_from(&self.saved);
                 return Err(AdvanceError {
-                    error,
+                    error: error.into(),
                     last_good_time: t0,
                 });
             }
         }
+        self.state.set_lag(0.0);
+        if needed > f64::from(bound) {
+            // stopped short: the clock is where the bodies are
+            let reached = (t0 - self.saved.lag()) + dt * n as f64;
+            self.state.set_time(reached);
+            return Err(AdvanceError {
+                error: Failure::WorkBound { needed, bound },
+                last_good_time: reached,
+            });
+        }
         self.state.set_time(t_end);
-        Ok(())
+        Ok(true)
     }
 }

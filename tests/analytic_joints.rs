@@ -33,6 +33,7 @@ fn settings(h: f64, order: u8) -> SolverSettings {
         order,
         tolerance: 1e-12,
         max_iterations: 30,
+        ..SolverSettings::default()
     }
 }
 

@@ -111,6 +111,7 @@ fn expected(spec: &Spec) -> Vec<(String, &'static str)> {
             "solver.max_step".into(),
             "solver.tolerance".into(),
             "solver.order".into(),
+            "solver.max_substeps".into(),
         ],
         "parameter",
     );

@@ -111,8 +111,20 @@ fn corrupt_or_foreign_states_are_rejected_and_change_nothing() {
     ] {
         assert_eq!(f.deserialize(bad), fmi2Error);
     }
-    let mut other = bytes.clone();
-    other[20] ^= 1; // inside the GUID
+    let mut flipped = bytes.clone();
+    flipped[20] ^= 1; // inside the GUID
+    assert_eq!(f.deserialize(&flipped), fmi2Error);
+    assert!(
+        f.last_message().contains("checksum mismatch"),
+        "{}",
+        f.last_message()
+    );
+    let dp = triad::spec::bundled()
+        .iter()
+        .find(|(n, _)| *n == "double_pendulum")
+        .unwrap()
+        .1;
+    let other = Fmu::initialised(&TestModel::new(dp)).serialize();
     assert_eq!(f.deserialize(&other), fmi2Error);
     assert!(
         f.last_message().contains("belongs to model"),

@@ -88,6 +88,7 @@ fn every_pair_agrees_with_the_multiplier_form() {
             order: 2,
             tolerance: 1e-10,
             max_iterations: 20,
+            ..SolverSettings::default()
         };
         let reduced = Model::new(&def, s).expect("model");
         let mut multiplier = reduced.clone();

@@ -24,7 +24,7 @@ fn display_is_one_line_per_problem() {
     assert_eq!(
         lines,
         [
-            "p.json: body[0].mass: must be zero or positive and finite (got -2)",
+            "p.json: body[0].mass: must be >= 0 (got -2)",
             "p.json: joint[0].axis: zero length"
         ]
     );
@@ -106,7 +106,7 @@ fn shape_and_consistency_problems_are_reported_together() {
             "mix.toml: gravity: expected 3 numbers, found 2",
             "mix.toml: body[0].colour: unknown field \"colour\"; expected one of: name, mass, com, inertia, position, orientation, velocity, angular_velocity, description",
             "mix.toml: joint[0].axis: expected 3 numbers, found 2",
-            "mix.toml: body[0].mass: must be zero or positive and finite (got -1)",
+            "mix.toml: body[0].mass: must be >= 0 (got -1)",
             "mix.toml: body[0].inertia: violates the triangle inequality: principal moments 1 + 1 < 5, which no mass distribution has",
         ]
     );

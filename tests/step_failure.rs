@@ -19,6 +19,7 @@ fn no_convergence_leaves_state_bit_identical() {
         order: 2,
         tolerance: 1e-12,
         max_iterations: 1,
+        ..SolverSettings::default()
     };
     let (m, mut s) = build(&def, st);
     // advance a little with a normal model so that multipliers and velocities are non-trivial

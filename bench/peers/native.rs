@@ -187,7 +187,7 @@ fn main() -> Result<(), Box<dyn Error>> {
             if read {
                 sim.advance(a.h)
             } else {
-                sim.advance_state(a.h)
+                sim.advance_state(a.h).map(drop)
             }
             .map_err(|e| format!("step failed at t = {}: {}", e.last_good_time, e.error))?;
             t = (k * nsub + i + 1) as f64 * a.h;

@@ -112,12 +112,13 @@ ffi_fn! {
 
 ffi_fn! {
     /// `fmi2SetupExperiment` (FMI 2.0.4 §2.1.6): start time and optional stop time (a step
-    /// beyond it is refused); the tolerance is ignored (see the parameter `solver.tolerance`).
+    /// beyond it is refused); a defined tolerance must be positive and finite and is not used
+    /// otherwise (see the parameter `solver.tolerance`).
     fn fmi2SetupExperiment(c: fmi2Component, toleranceDefined: fmi2Boolean, tolerance: fmi2Real, startTime: fmi2Real, stopTimeDefined: fmi2Boolean, stopTime: fmi2Real) -> fmi2Status {
-        let _ = (toleranceDefined, tolerance);
         let stop = (stopTimeDefined != fmi2False).then_some(stopTime);
+        let tol = (toleranceDefined != fmi2False).then_some(tolerance);
         // SAFETY: FMI contract on c.
-        unsafe { with_instance(c, "fmi2SetupExperiment", |i| i.setup_experiment(startTime, stop)) }
+        unsafe { with_instance(c, "fmi2SetupExperiment", |i| i.setup_experiment(startTime, stop, tol)) }
     } ?= fmi2Fatal
 }
 

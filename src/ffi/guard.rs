@@ -5,6 +5,7 @@
 
 use crate::fmu::{FmuError, Instance, Status};
 use std::any::Any;
+use std::collections::HashSet;
 use std::panic::{catch_unwind, AssertUnwindSafe};
 
 use super::types::{
@@ -52,6 +53,9 @@ pub struct Component {
     magic: u64,
     /// The instance.
     pub instance: Instance,
+    /// The FMU states handed out by this instance and not yet freed (addresses of
+    /// `Box<Snapshot>`s): a pointer not in here is refused, and `fmi2FreeInstance` frees the rest.
+    pub states: HashSet<usize>,
 }
 
 /// The status code of a [`Status`].
@@ -100,10 +104,23 @@ pub(crate) unsafe fn with_instance(
     f: impl FnOnce(&mut Instance) -> Result<Status, FmuError>,
 ) -> fmi2Status {
     // SAFETY: forwarded caller contract.
+    unsafe { with_component(c, function, |comp| f(&mut comp.instance)) }
+}
+
+/// [`with_instance`] for calls that also need the component's FMU-state registry.
+///
+/// # Safety
+/// As [`component`].
+pub(crate) unsafe fn with_component(
+    c: fmi2Component,
+    function: &'static str,
+    f: impl FnOnce(&mut Component) -> Result<Status, FmuError>,
+) -> fmi2Status {
+    // SAFETY: forwarded caller contract.
     let Some(comp) = (unsafe { component(c) }) else {
         return fmi2Error;
     };
-    match catch_unwind(AssertUnwindSafe(|| f(&mut comp.instance))) {
+    match catch_unwind(AssertUnwindSafe(|| f(comp))) {
         Ok(result) => code(comp.instance.finish(function, result)),
         Err(payload) => {
             // poisoning the instance is what makes AssertUnwindSafe honest
@@ -171,6 +188,7 @@ pub(crate) fn into_component(instance: Instance) -> fmi2Component {
     Box::into_raw(Box::new(Component {
         magic: MAGIC,
         instance,
+        states: HashSet::new(),
     }))
     .cast()
 }
@@ -183,6 +201,11 @@ pub(crate) unsafe fn free_component(c: fmi2Component) {
     // SAFETY: forwarded caller contract: a live Box<Component>.
     if let Some(comp) = unsafe { component(c) } {
         comp.magic = 0;
+        for &s in &comp.states {
+            // SAFETY: every registered address is a live Box<Snapshot> made by fmi2GetFMUstate
+            // or fmi2DeSerializeFMUstate and removed from the set when freed.
+            drop(unsafe { Box::from_raw(s as *mut crate::fmu::Snapshot) });
+        }
         // SAFETY: the pointer came from Box::into_raw in into_component and is freed once (magic reset).
         drop(unsafe { Box::from_raw(c.cast::<Component>()) });
     }

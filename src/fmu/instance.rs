@@ -5,7 +5,8 @@ use super::contract::{self, Format, Spec};
 use super::log::{Category, Filter, LogSink};
 pub use super::mode::{allowed, Mode, Op};
 use super::status::{FmuError, Status};
-use crate::mechanics::{ModelDef, SolverSettings};
+use crate::mechanics::{ranges, ModelDef, SolverSettings};
+use crate::sim::Failure;
 use crate::sim::Simulation;
 use crate::variables::{Accessor, VariableTable};
 use std::collections::HashMap;
@@ -253,16 +254,28 @@ impl Instance {
         Ok(Status::Ok)
     }
 
-    /// `fmi2SetupExperiment`: start time and optional stop time; the tolerance is ignored (the
-    /// Newton tolerance is the parameter `solver.tolerance`).
+    /// `fmi2SetupExperiment`: start time and optional stop time; a defined tolerance must be
+    /// positive and finite and is otherwise not used (the Newton tolerance is the parameter
+    /// `solver.tolerance`).
     ///
     /// # Errors
-    /// Wrong mode or non-finite times.
-    pub fn setup_experiment(&mut self, start: f64, stop: Option<f64>) -> Result<Status, FmuError> {
+    /// Wrong mode, non-finite times, a stop before the start, a non-finite or non-positive
+    /// tolerance; nothing changed.
+    pub fn setup_experiment(
+        &mut self,
+        start: f64,
+        stop: Option<f64>,
+        tolerance: Option<f64>,
+    ) -> Result<Status, FmuError> {
         self.check(Op::SetupExperiment, "fmi2SetupExperiment")?;
         if !start.is_finite() || stop.is_some_and(|s| !s.is_finite() || s < start) {
             return Err(FmuError::rejected(format!(
                 "invalid experiment: startTime {start}, stopTime {stop:?}"
+            )));
+        }
+        if let Some(tol) = tolerance.filter(|t| !(t.is_finite() && *t > 0.0)) {
+            return Err(FmuError::rejected(format!(
+                "invalid experiment: toleranceDefined with tolerance {tol} (must be positive and finite)"
             )));
         }
         self.start_time = start;
@@ -274,25 +287,35 @@ impl Instance {
     /// `fmi2EnterInitializationMode`: builds the simulation at the start time.
     ///
     /// # Errors
-    /// Wrong mode; a model that cannot be built (→ Error mode).
+    /// Wrong mode; parameters that break a rule involving several of them (an inertia tensor,
+    /// `lower < upper`) or a model that cannot be built: rejected, still in Instantiated mode,
+    /// so the parameters can be corrected.
     pub fn enter_initialization_mode(&mut self) -> Result<Status, FmuError> {
         self.check(Op::EnterInitializationMode, "fmi2EnterInitializationMode")?;
         let sim = self
             .build(&self.def, &self.settings, &self.inputs)
-            .map_err(FmuError::Failed)?;
+            .map_err(FmuError::Rejected)?;
         self.sim = Some(sim);
         self.mode = Mode::InitializationMode;
         self.event("fmi2EnterInitializationMode: simulation built");
         Ok(Status::Ok)
     }
 
-    /// Builds a simulation of `def` at the start time with the given input values.
+    /// Builds a simulation of `def` at the start time with the given input values, after the
+    /// rules that involve several parameters ([`ranges::cross_checks`]).
     pub(super) fn build(
         &self,
         def: &ModelDef,
         settings: &SolverSettings,
         inputs: &[f64],
     ) -> Result<Simulation, String> {
+        let broken: Vec<String> = ranges::cross_checks(def)
+            .into_iter()
+            .map(|(what, e)| format!("{what} {e}"))
+            .collect();
+        if !broken.is_empty() {
+            return Err(format!("invalid parameters: {}", broken.join("; ")));
+        }
         let mut sim = Simulation::new(def, *settings, self.start_time)
             .map_err(|e| format!("model cannot be built: {e}"))?;
         let dst = sim.state_mut().inputs_mut();
@@ -338,11 +361,14 @@ impl Instance {
     }
 
     /// `fmi2DoStep(t, H)`: checks `t` against the instance time (relative tolerance 1e-9),
-    /// then advances by `H` in `ceil(H/max_step)` equal sub-steps landing on `t + H`.
+    /// then advances by `H` in `ceil(H/max_step)` equal sub-steps landing on `t + H` (a step
+    /// shorter than `1e-6 max_step` is carried into the next one, see [`crate::sim`]).
     ///
     /// # Errors
-    /// Wrong mode, bad arguments (rejected, nothing changed); a failed sub-step gives
-    /// [`FmuError::Discard`] with the state rolled back to `t` (still usable).
+    /// Wrong mode, bad arguments (rejected, nothing changed); a failed sub-step or a non-finite
+    /// output gives [`FmuError::Discard`] with the state rolled back to `t`, a step needing more
+    /// than `solver.max_substeps` sub-steps [`FmuError::Discard`] at the time reached (usable
+    /// there either way).
     pub fn do_step(&mut self, t: f64, h: f64) -> Result<Status, FmuError> {
         self.check(Op::DoStep, "fmi2DoStep")?;
         let stop = self.stop_time;
@@ -384,9 +410,12 @@ impl Instance {
             }
             Err(e) => {
                 self.last_successful_time = e.last_good_time;
+                let what = match e.error {
+                    Failure::WorkBound { .. } => format!("stopped at t = {} ({}); continue from there with shorter communication steps, or raise solver.max_substeps", e.last_good_time, e.error),
+                    _ => format!("failed ({}); state rolled back to t = {}, continue from there with a smaller step or other inputs", e.error, e.last_good_time),
+                };
                 Err(FmuError::Discard(format!(
-                    "step from t = {t} by H = {h} failed ({}); state rolled back to t = {}, continue from there with a smaller step or other inputs",
-                    e.error, e.last_good_time
+                    "step from t = {t} by H = {h} {what}"
                 )))
             }
         }

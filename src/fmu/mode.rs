@@ -40,6 +40,16 @@ impl Mode {
         }
     }
 
+    /// Whether `fmi2GetFMUstate` records this mode (it refuses Error and Fatal, and the step
+    /// modes never occur): the only modes a saved state may hold.
+    #[must_use]
+    pub fn recordable(self) -> bool {
+        matches!(
+            self,
+            Self::Instantiated | Self::InitializationMode | Self::StepComplete | Self::Terminated
+        )
+    }
+
     pub(super) fn code(self) -> u8 {
         self as u8
     }

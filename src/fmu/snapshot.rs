@@ -2,26 +2,34 @@
 //! restores it, and (de)serialisation writes it as a versioned, pointer-free little-endian byte
 //! string, so a state can continue in another instance or another process bit-identically.
 //!
-//! Byte format, version 1 (all integers u32 LE, all reals f64 LE bit patterns):
+//! Byte format, version 2 (all integers u32 LE, all reals f64 LE bit patterns):
 //!
 //! | field | bytes |
 //! |---|---|
 //! | magic `TRIADFS\0` | 8 |
-//! | version = 1 | 4 |
+//! | version = 2 | 4 |
 //! | GUID length n, GUID (UTF-8) | 4 + n |
 //! | mode code (`Mode` order) | 1 |
 //! | start time, stop-time flag (u8) and stop time, last successful time | 8 + 1 + 8 + 8 |
 //! | parameter count m, values of every parameter in table order | 4 + 8m |
 //! | pending input count k, values | 4 + 8k |
 //! | state flag (u8); if 1: length s and `State::snapshot()` | 1 (+ 4 + 8s) |
-
+//! | CRC-32 (IEEE) of every byte before it | 4 |
+//!
+//! Reading verifies the checksum, then every field: the mode is one `fmi2GetFMUstate` records
+//! (Instantiated, Initialization Mode, stepComplete, Terminated), times and all numbers are
+//! finite, the stop time is not before the start; restoring then checks the sizes against the
+//! model and every parameter against its range (`mechanics::ranges`). Any other buffer is
+//! refused and the instance is left as it was.
 use super::contract::{read_param, write_param};
 use super::instance::{Instance, Mode, Op};
 use super::status::{FmuError, Status};
+use crate::mechanics::{ModelDef, SolverSettings};
+use crate::sim::Simulation;
 use crate::variables::Causality;
 
 const MAGIC: &[u8; 8] = b"TRIADFS\0";
-const VERSION: u32 = 1;
+const VERSION: u32 = 2;
 
 /// Everything that determines the future of an instance.
 #[derive(Clone, Debug, PartialEq)]
@@ -68,28 +76,42 @@ impl Snapshot {
         if let Some(s) = &self.state {
             reals(&mut b, s);
         }
+        let crc = crc32fast::hash(&b);
+        b.extend_from_slice(&crc.to_le_bytes());
         b
     }
 
-    /// Parses bytes written by [`Snapshot::to_bytes`].
+    /// Parses and verifies bytes written by [`Snapshot::to_bytes`] (module docs).
     ///
     /// # Errors
-    /// A message for a wrong magic or version, truncated or trailing data.
+    /// A message for a wrong magic, version or checksum, truncated or trailing data, a mode
+    /// that is never recorded, non-finite numbers or inconsistent times.
     pub fn from_bytes(bytes: &[u8]) -> Result<Snapshot, String> {
-        let mut r = Reader { b: bytes, at: 0 };
-        if r.take(8)? != MAGIC {
+        if bytes.len() < MAGIC.len() + 8 || &bytes[..MAGIC.len()] != MAGIC {
             return Err("not a triad FMU state (bad magic)".into());
         }
+        let (body, crc) = bytes.split_at(bytes.len() - 4);
+        let mut r = Reader { b: body, at: 0 };
+        r.take(8)?;
         let version = r.u32()?;
         if version != VERSION {
             return Err(format!(
                 "FMU state format version {version} is not supported (expected {VERSION})"
             ));
         }
+        let stored = u32::from_le_bytes([crc[0], crc[1], crc[2], crc[3]]);
+        if crc32fast::hash(body) != stored {
+            return Err("FMU state is corrupted (checksum mismatch)".into());
+        }
         let n = r.u32()? as usize;
         let guid =
             String::from_utf8(r.take(n)?.to_vec()).map_err(|_| "GUID is not UTF-8".to_string())?;
-        let mode = Mode::from_code(r.u8()?).ok_or("bad mode code")?;
+        let code = r.u8()?;
+        let mode = Mode::from_code(code)
+            .filter(|m| m.recordable())
+            .ok_or_else(|| {
+                format!("FMU state has mode code {code}, which fmi2GetFMUstate never records")
+            })?;
         let start_time = r.f64()?;
         let has_stop = r.u8()? != 0;
         let stop = r.f64()?;
@@ -97,11 +119,27 @@ impl Snapshot {
         let params = r.reals()?;
         let inputs = r.reals()?;
         let state = if r.u8()? != 0 { Some(r.reals()?) } else { None };
-        if r.at != bytes.len() {
+        if r.at != body.len() {
             return Err(format!(
                 "{} trailing bytes after the FMU state",
-                bytes.len() - r.at
+                body.len() - r.at
             ));
+        }
+        let times = [start_time, stop, last_successful_time];
+        if times.iter().any(|t| !t.is_finite()) || (has_stop && stop < start_time) {
+            return Err(format!("FMU state has invalid times: start {start_time}, stop {stop}, last successful {last_successful_time}"));
+        }
+        let lists = [("parameter", &params), ("input", &inputs)];
+        for (what, xs) in lists {
+            if let Some(x) = xs.iter().find(|x| !x.is_finite()) {
+                return Err(format!("FMU state holds a non-finite {what} value ({x})"));
+            }
+        }
+        if state
+            .as_ref()
+            .is_some_and(|s| s.iter().any(|x| !x.is_finite()))
+        {
+            return Err("FMU state holds a non-finite simulation value".into());
         }
         Ok(Snapshot {
             guid,
@@ -193,6 +231,40 @@ impl Instance {
     /// Wrong mode, a state of another model (GUID), or one that does not fit the model.
     pub fn set_fmu_state(&mut self, snap: &Snapshot) -> Result<Status, FmuError> {
         self.check(Op::FmuState, "fmi2SetFMUstate")?;
+        let (def, settings, sim) = self.prepare(snap)?;
+        self.def = def;
+        self.settings = settings;
+        self.sim = sim;
+        self.inputs.clone_from(&snap.inputs);
+        self.mode = snap.mode;
+        self.start_time = snap.start_time;
+        self.stop_time = snap.stop_time;
+        self.last_successful_time = snap.last_successful_time;
+        Ok(Status::Ok)
+    }
+
+    /// Checks that `snap` can be restored into this instance (GUID, mode, sizes, parameter
+    /// ranges, the simulation state), building everything on temporaries: what
+    /// `fmi2DeSerializeFMUstate` asks before it hands out a state.
+    ///
+    /// # Errors
+    /// As [`Instance::set_fmu_state`]; nothing is changed.
+    pub fn verify_fmu_state(&self, snap: &Snapshot) -> Result<(), FmuError> {
+        self.prepare(snap).map(drop)
+    }
+
+    /// The definition, settings and simulation `snap` restores to.
+    #[allow(clippy::type_complexity)]
+    fn prepare(
+        &self,
+        snap: &Snapshot,
+    ) -> Result<(ModelDef, SolverSettings, Option<Simulation>), FmuError> {
+        if !snap.mode.recordable() {
+            return Err(FmuError::rejected(format!(
+                "FMU state is in {}, which fmi2GetFMUstate never records",
+                snap.mode.name()
+            )));
+        }
         if snap.guid != self.guid {
             return Err(FmuError::rejected(format!(
                 "FMU state belongs to model {} (this is {})",
@@ -233,18 +305,33 @@ impl Instance {
                 sim.state_mut()
                     .restore(&model, data)
                     .map_err(|e| FmuError::rejected(format!("FMU state: {e}")))?;
+                let lag = sim.state().lag();
+                if !(0.0..crate::sim::MIN_STEP_RATIO * settings.max_step).contains(&lag) {
+                    return Err(FmuError::rejected(format!(
+                        "FMU state: lag {lag} s is outside [0, {:e}) s",
+                        crate::sim::MIN_STEP_RATIO * settings.max_step
+                    )));
+                }
+                if let Some(what) = sim.state().outputs().first_non_finite() {
+                    return Err(FmuError::rejected(format!(
+                        "FMU state: the restored state gives a non-finite output ({what})"
+                    )));
+                }
                 Some(sim)
             }
         };
-        self.def = def;
-        self.settings = settings;
-        self.sim = sim;
-        self.inputs.clone_from(&snap.inputs);
-        self.mode = snap.mode;
-        self.start_time = snap.start_time;
-        self.stop_time = snap.stop_time;
-        self.last_successful_time = snap.last_successful_time;
-        Ok(Status::Ok)
+        if snap.state.is_none()
+            && matches!(
+                snap.mode,
+                Mode::InitializationMode | Mode::StepComplete | Mode::Terminated
+            )
+        {
+            return Err(FmuError::rejected(format!(
+                "FMU state in {} has no simulation state",
+                snap.mode.name()
+            )));
+        }
+        Ok((def, settings, sim))
     }
 }
 

@@ -35,7 +35,7 @@ pub use model::def::{
 };
 pub use model::error::ModelError;
 pub use model::runtime::{InputSlot, Model};
-pub use model::{body, constraint, def, joint, kinematics, loops};
+pub use model::{body, constraint, def, joint, kinematics, loops, ranges};
 pub use run::advance::{step, step_state};
 pub use run::outputs::{BodyOutput, JointOutput, Outputs};
 pub use run::state::State;

@@ -135,6 +135,7 @@ const SOLVER: &[Field] = &[
     opt("max_step", NUM),
     opt("order", Check::Value(is::<super::values::Order>)),
     opt("tolerance", NUM),
+    opt("max_substeps", Check::Value(is::<u32>)),
 ];
 const ORIGIN: &[Field] = &[opt("xyz", VEC3), opt("rpy", VEC3)];
 const INITIAL: &[Field] = &[

@@ -189,6 +189,7 @@ pub(crate) fn build(spec: &Spec) -> (ModelDef, SolverSettings) {
         max_step: spec.solver.max_step,
         order: spec.solver.order,
         tolerance: spec.solver.tolerance,
+        max_substeps: spec.solver.max_substeps,
         ..SolverSettings::default()
     };
     (def, settings)

@@ -88,6 +88,9 @@ pub struct SolverSpec {
     /// Newton tolerance on the scaled residual, in (0, 1e-3); default 1e-10, below which
     /// conservation is at round-off.
     pub tolerance: f64,
+    /// Most internal sub-steps one communication step may take (default 100 000): a step that
+    /// needs more stops there (`fmi2Discard` with the progress made).
+    pub max_substeps: u32,
 }
 
 impl Default for SolverSpec {
@@ -97,6 +100,7 @@ impl Default for SolverSpec {
             max_step: s.max_step,
             order: s.order,
             tolerance: s.tolerance,
+            max_substeps: s.max_substeps,
         }
     }
 }

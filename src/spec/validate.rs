@@ -3,9 +3,7 @@
 
 use std::collections::HashMap;
 
-use nalgebra::SymmetricEigen;
-
-use crate::mechanics::{Model, ModelError};
+use crate::mechanics::{ranges, Model, ModelError};
 
 use super::error::{did_you_mean, Report, SpecErrors};
 use super::schema::{BodySpec, Spec};
@@ -76,20 +74,19 @@ fn top_level(spec: &Spec, report: &mut Report) {
         );
     }
     let s = &spec.solver;
-    if !(s.max_step > 0.0 && s.max_step.is_finite()) {
-        report.push(
-            "solver.max_step",
-            format!("must be positive and finite (got {})", s.max_step),
-        );
-    }
-    if s.order != 2 && s.order != 4 {
-        report.push("solver.order", format!("must be 2 or 4 (got {})", s.order));
-    }
-    if !(s.tolerance > 0.0 && s.tolerance < 1e-3) {
-        report.push(
-            "solver.tolerance",
-            format!("must be in (0, 1e-3) (got {})", s.tolerance),
-        );
+    let checks = [
+        ("solver.max_step", ranges::max_step(s.max_step)),
+        ("solver.order", ranges::order(f64::from(s.order)).map(drop)),
+        ("solver.tolerance", ranges::tolerance(s.tolerance)),
+        (
+            "solver.max_substeps",
+            ranges::max_substeps(f64::from(s.max_substeps)).map(drop),
+        ),
+    ];
+    for (path, check) in checks {
+        if let Err(e) = check {
+            report.push(path, e);
+        }
     }
 }
 
@@ -102,11 +99,8 @@ fn bodies(spec: &Spec, report: &mut Report) {
                 "\"world\" is reserved for the fixed world frame",
             );
         }
-        if !(b.mass >= 0.0 && b.mass.is_finite()) {
-            report.push(
-                format!("{p}.mass"),
-                format!("must be zero or positive and finite (got {})", b.mass),
-            );
+        if let Err(e) = ranges::non_negative(b.mass) {
+            report.push(format!("{p}.mass"), e);
         }
         check_finite(report, &format!("{p}.com"), &b.com);
         inertia(report, &format!("{p}.inertia"), b);
@@ -147,42 +141,9 @@ fn inertia(report: &mut Report, path: &str, b: &BodySpec) {
     let numbers = b.inertia.numbers();
     if numbers.iter().any(|x| !x.is_finite()) {
         check_finite(report, path, &numbers);
-        return;
+    } else if let Err(e) = ranges::inertia(&b.inertia.matrix()) {
+        report.push(path, e);
     }
-    let m = b.inertia.matrix();
-    let scale = m.amax().max(f64::MIN_POSITIVE);
-    if (m - m.transpose()).amax() > 1e-12 * scale {
-        report.push(path, "is not symmetric");
-        return;
-    }
-    let eig = SymmetricEigen::new(m).eigenvalues;
-    let mut e = [eig[0], eig[1], eig[2]];
-    e.sort_by(f64::total_cmp);
-    if e.iter().any(|x| !x.is_finite()) {
-        report.push(
-            path,
-            "is too large to handle (its principal moments overflow)",
-        );
-    } else if e[0] < -1e-12 * scale {
-        report.push(
-            path,
-            format!(
-                "has a negative principal moment (principal moments {}, {}, {})",
-                sig(e[0]),
-                sig(e[1]),
-                sig(e[2])
-            ),
-        );
-    } else if e[0] + e[1] < e[2] * (1.0 - 1e-12) {
-        report.push(path, format!("violates the triangle inequality: principal moments {} + {} < {}, which no mass distribution has", sig(e[0]), sig(e[1]), sig(e[2])));
-    }
-}
-
-/// `x` rounded to 6 significant digits, printed plainly.
-fn sig(x: f64) -> String {
-    format!("{:.5e}", x)
-        .parse::<f64>()
-        .map_or_else(|_| x.to_string(), |r| r.to_string())
 }
 
 fn loads(spec: &Spec, report: &mut Report, body_index: &HashMap<&str, usize>) {

@@ -2,7 +2,7 @@
 //! parameters live in the [`State`]; fixed parameters in the [`ModelDef`] and [`SolverSettings`].
 
 use super::types::Accessor;
-use crate::mechanics::{JointInitial, JointLimits, ModelDef, SolverSettings, State};
+use crate::mechanics::{ranges, JointInitial, JointLimits, ModelDef, SolverSettings, State};
 
 /// Value of an input, an output or a tunable parameter (damping, stiffness) in `state`; `None`
 /// for fixed parameters (see [`read_param`]) and for outputs the state does not hold.
@@ -70,6 +70,7 @@ pub fn read_param(acc: Accessor, def: &ModelDef, settings: &SolverSettings) -> O
         Accessor::MaxStep => Some(settings.max_step),
         Accessor::Tolerance => Some(settings.tolerance),
         Accessor::Order => Some(f64::from(settings.order)),
+        Accessor::MaxSubsteps => Some(f64::from(settings.max_substeps)),
         _ => None,
     }
 }
@@ -106,36 +107,34 @@ fn limits(def: &mut ModelDef, j: usize) -> Result<&mut JointLimits, String> {
     Ok(&mut def.joints.get_mut(j).ok_or("no such joint")?.limits)
 }
 
-/// Sets a parameter in `def`/`settings` (before the model is built). `inertia[i,j]` sets `[i,j]`
-/// and `[j,i]`; masses must be positive, damping and stiffness non-negative, the order 2 or 4.
+/// Sets a parameter in `def`/`settings` (before the model is built), after checking it against
+/// its range ([`crate::mechanics::ranges`], the rules `triad check` applies to a spec).
+/// `inertia[i,j]` sets `[i,j]` and `[j,i]`; the rules that involve several parameters (the
+/// inertia tensor as a whole, `lower < upper`) are checked when the model is built
+/// ([`crate::mechanics::ranges::cross_checks`]).
 ///
 /// # Errors
-/// A message for non-finite or out-of-range values and for accessors that are not parameters.
+/// A message for a value outside its range and for accessors that are not parameters.
 pub fn write_param(
     acc: Accessor,
     def: &mut ModelDef,
     settings: &mut SolverSettings,
     value: f64,
 ) -> Result<(), String> {
-    if !value.is_finite() {
-        return Err(format!("value {value} is not finite"));
-    }
-    let nonneg = |what: &str| {
-        if value >= 0.0 {
-            Ok(())
-        } else {
-            Err(format!("{what} must be >= 0 (got {value})"))
-        }
-    };
+    let named = |what: &str, r: Result<(), String>| r.map_err(|e| format!("{what} {e}"));
     match acc {
-        Accessor::Gravity(i) => *def.gravity.get_mut(i).ok_or("no such gravity component")? = value,
+        Accessor::Gravity(i) => {
+            named("gravity", ranges::any_finite(value))?;
+            *def.gravity.get_mut(i).ok_or("no such gravity component")? = value;
+        }
         Accessor::Mass(b) => {
             // zero is a mass like any other; whether the motion stays determined is decided
             // when the model is built
-            nonneg("mass")?;
+            named("mass", ranges::non_negative(value))?;
             def.bodies.get_mut(b).ok_or("no such body")?.mass = value;
         }
         Accessor::Inertia { body, i, j } => {
+            named("inertia", ranges::any_finite(value))?;
             let b = def.bodies.get_mut(body).ok_or("no such body")?;
             if i > 2 || j > 2 {
                 return Err("inertia index out of range".into());
@@ -143,54 +142,56 @@ pub fn write_param(
             b.inertia[(i, j)] = value;
             b.inertia[(j, i)] = value;
         }
-        Accessor::Q0 { joint, k } => set_initial(def, joint, k, false, value)?,
-        Accessor::Qd0 { joint, k } => set_initial(def, joint, k, true, value)?,
+        Accessor::Q0 { joint, k } => {
+            named("initial value", ranges::any_finite(value))?;
+            set_initial(def, joint, k, false, value)?;
+        }
+        Accessor::Qd0 { joint, k } => {
+            named("initial rate", ranges::any_finite(value))?;
+            set_initial(def, joint, k, true, value)?;
+        }
         Accessor::Damping(j) => {
-            nonneg("damping")?;
+            named("damping", ranges::non_negative(value))?;
             def.joints.get_mut(j).ok_or("no such joint")?.damping = value;
         }
         Accessor::Stiffness(j) => {
-            nonneg("stiffness")?;
+            named("stiffness", ranges::non_negative(value))?;
             def.joints.get_mut(j).ok_or("no such joint")?.stiffness = value;
         }
-        Accessor::Lower(j) => limits(def, j)?.lower = value,
-        Accessor::Upper(j) => limits(def, j)?.upper = value,
+        Accessor::Lower(j) => {
+            named("lower", ranges::any_finite(value))?;
+            limits(def, j)?.lower = value;
+        }
+        Accessor::Upper(j) => {
+            named("upper", ranges::any_finite(value))?;
+            limits(def, j)?.upper = value;
+        }
         Accessor::Effort(j) => {
-            if value <= 0.0 {
-                return Err(format!("effort must be > 0 (got {value})"));
-            }
+            named("effort", ranges::positive(value))?;
             limits(def, j)?.effort = value;
         }
         Accessor::StopStiffness(j) => {
-            if value <= 0.0 {
-                return Err(format!("stop_stiffness must be > 0 (got {value})"));
-            }
+            named("stop_stiffness", ranges::positive(value))?;
             limits(def, j)?.stop_stiffness = value;
         }
         Accessor::StopDamping(j) => {
-            nonneg("stop_damping")?;
+            named("stop_damping", ranges::non_negative(value))?;
             limits(def, j)?.stop_damping = value;
         }
         Accessor::MaxStep => {
-            if value <= 0.0 {
-                return Err(format!("solver.max_step must be > 0 (got {value})"));
-            }
+            named("solver.max_step", ranges::max_step(value))?;
             settings.max_step = value;
         }
         Accessor::Tolerance => {
-            if !(value > 0.0 && value < 1e-3) {
-                return Err(format!(
-                    "solver.tolerance must be in (0, 1e-3) (got {value})"
-                ));
-            }
+            named("solver.tolerance", ranges::tolerance(value))?;
             settings.tolerance = value;
         }
         Accessor::Order => {
-            settings.order = match value {
-                2.0 => 2,
-                4.0 => 4,
-                _ => return Err(format!("solver.order must be 2 or 4 (got {value})")),
-            }
+            settings.order = ranges::order(value).map_err(|e| format!("solver.order {e}"))?;
+        }
+        Accessor::MaxSubsteps => {
+            settings.max_substeps =
+                ranges::max_substeps(value).map_err(|e| format!("solver.max_substeps {e}"))?;
         }
         _ => return Err("not a parameter".into()),
     }

@@ -71,7 +71,7 @@ impl Builder {
             Causality::Output => Initial::Calculated,
             Causality::Parameter => Initial::Exact,
         };
-        let ty = if accessor == Accessor::Order {
+        let ty = if matches!(accessor, Accessor::Order | Accessor::MaxSubsteps) {
             VarType::Integer
         } else {
             VarType::Real

@@ -197,4 +197,11 @@ pub(super) fn parameters(b: &mut Builder, def: &ModelDef, settings: &SolverSetti
         "order of the time integrator: 2 (energy-momentum midpoint) or 4 (triple jump)".into(),
         Accessor::Order,
     );
+    b.fixed(
+        "solver.max_substeps".into(),
+        f64::from(settings.max_substeps),
+        None,
+        "most internal sub-steps in one fmi2DoStep: a step needing more stops there with fmi2Discard (fmi2LastSuccessfulTime says how far it got)".into(),
+        Accessor::MaxSubsteps,
+    );
 }

@@ -179,6 +179,8 @@ pub enum Accessor {
     Tolerance,
     /// `solver.order` (Integer).
     Order,
+    /// `solver.max_substeps` (Integer).
+    MaxSubsteps,
 }
 
 /// One variable.

@@ -69,6 +69,7 @@ pub fn settings(h: f64, order: u8) -> SolverSettings {
         order,
         tolerance: 1e-12,
         max_iterations: 30,
+        ..SolverSettings::default()
     }
 }
 

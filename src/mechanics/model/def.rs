@@ -264,6 +264,9 @@ pub struct SolverSettings {
     pub tolerance: f64,
     /// Newton iteration limit per step (default 20).
     pub max_iterations: usize,
+    /// Most internal sub-steps one communication step may take (default 100 000); a step that
+    /// needs more stops there and reports how far it got. Not used by the step itself.
+    pub max_substeps: u32,
 }
 
 impl Default for SolverSettings {
@@ -273,6 +276,7 @@ impl Default for SolverSettings {
             order: 2,
             tolerance: 1e-10,
             max_iterations: 20,
+            max_substeps: 100_000,
         }
     }
 }

@@ -13,6 +13,8 @@
 //!   (`sink`), and the M-orthogonal projection of velocities onto the admissible ones
 //!   (`projection`; it makes the initial rates consistent and the reported rates exact);
 //! - one-sided joint stops as an exact discrete gradient (`stops`);
+//! - the valid range of every parameter and solver setting (`ranges`), shared by the spec
+//!   check and the FMU;
 //! - test models shared by several layers' unit tests (`fixtures`).
 //!
 //! Uses: `linalg` and `crate::math`; never `step` or `run`.
@@ -30,6 +32,7 @@ pub(crate) mod kernels;
 pub mod kinematics;
 pub mod loops;
 pub(crate) mod projection;
+pub mod ranges;
 pub(crate) mod redundancy;
 pub(crate) mod runtime;
 pub(crate) mod sink;

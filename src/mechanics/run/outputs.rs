@@ -59,6 +59,46 @@ use crate::mechanics::model::joint::world_nodes;
 use crate::mechanics::model::runtime::{DofRt, Model};
 
 impl Outputs {
+    /// The name of the first non-finite output (`body 2 r`, `system.energy`, ...), if any.
+    #[must_use]
+    pub fn first_non_finite(&self) -> Option<String> {
+        let bad = |xs: &[f64]| xs.iter().any(|x| !x.is_finite());
+        let frames = [("body", &self.bodies), ("site", &self.sites)];
+        for (what, list) in frames {
+            for (i, b) in list.iter().enumerate() {
+                for (name, xs) in [
+                    ("r", b.r.as_slice()),
+                    ("R", b.rot.as_slice()),
+                    ("v", b.v.as_slice()),
+                    ("w", b.w.as_slice()),
+                ] {
+                    if bad(xs) {
+                        return Some(format!("{what} {} {name}", i + 1));
+                    }
+                }
+            }
+        }
+        for (i, j) in self.joints.iter().enumerate() {
+            if bad(&j.q) || bad(&j.qd) {
+                return Some(format!("joint {} coordinates", i + 1));
+            }
+        }
+        let system = [
+            ("system.energy", self.energy),
+            ("system.work", self.work),
+            ("system.constraint_residual", self.constraint_residual),
+        ];
+        for (name, x) in system {
+            if !x.is_finite() {
+                return Some(name.into());
+            }
+        }
+        if bad(self.p.as_slice()) || bad(self.l.as_slice()) {
+            return Some("system momentum".into());
+        }
+        None
+    }
+
     /// Outputs sized for `model` (values zero until [`update`] runs).
     #[must_use]
     pub(crate) fn for_model(model: &Model) -> Self {

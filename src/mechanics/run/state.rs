@@ -12,6 +12,10 @@ use crate::mechanics::step::work::{history_len, Memory, HISTORY, TABLES};
 pub struct State {
     /// Time, s.
     pub(crate) t: f64,
+    /// How far the coordinates and velocities lag behind `t`, s: the span of communication
+    /// steps too short to integrate, carried into the next step (see `crate::sim`); 0 after
+    /// every integrated step.
+    pub(crate) lag: f64,
     /// Coordinates `[φ, d1, d2, d3]` per body (12 per body), world frame, m and 1.
     pub(crate) q: Vec<f64>,
     /// Velocities (12 per body), world frame, m/s and 1/s.
@@ -47,6 +51,7 @@ impl State {
         let def = model.def();
         let mut s = Self {
             t: 0.0,
+            lag: 0.0,
             q: model.q0.clone(),
             v: model.v0.clone(),
             v_lo: vec![0.0; model.v0.len()],
@@ -96,6 +101,18 @@ impl State {
     /// Sets the current time (e.g. the FMI start time) without changing anything else.
     pub fn set_time(&mut self, t: f64) {
         self.t = t;
+    }
+
+    /// How far the coordinates and velocities lag behind [`State::time`], s (0 unless the last
+    /// communication steps were too short to integrate; they are carried into the next step).
+    #[must_use]
+    pub fn lag(&self) -> f64 {
+        self.lag
+    }
+
+    /// Sets the lag (see [`State::lag`]), s.
+    pub fn set_lag(&mut self, lag: f64) {
+        self.lag = lag;
     }
 
     /// Input values in the order of `Model::inputs` (held constant over each step).
@@ -162,11 +179,12 @@ impl State {
 
     /// Every number that determines the future of this state (time, q, v, multipliers used as
     /// the Newton start, inputs, tunable parameters, accumulated work, unwrapping memory), flat:
-    /// `[t, q.., v.., v_lo.., λ/2.., angles.., work, hist.., h_prev.., memory (3), inputs.., damping.., stiffness..]`.
+    /// `[t, lag, q.., v.., v_lo.., λ/2.., angles.., work, hist.., h_prev.., memory (3), inputs.., damping.., stiffness..]`.
     #[must_use]
     pub fn snapshot(&self) -> Vec<f64> {
         let mut out = Vec::with_capacity(self.snapshot_len());
         out.push(self.t);
+        out.push(self.lag);
         out.extend_from_slice(&self.q);
         out.extend_from_slice(&self.v);
         out.extend_from_slice(&self.v_lo);
@@ -183,7 +201,7 @@ impl State {
     }
 
     fn snapshot_len(&self) -> usize {
-        2 + Memory::LEN
+        3 + Memory::LEN
             + HISTORY * TABLES
             + self.q.len()
             + self.hist.len()
@@ -212,7 +230,7 @@ impl State {
             dst.copy_from_slice(&data[at..at + dst.len()]);
             at += dst.len();
         };
-        let mut t = [0.0];
+        let mut t = [0.0; 2];
         take(&mut t);
         take(&mut self.q);
         take(&mut self.v);
@@ -230,6 +248,7 @@ impl State {
         take(&mut self.damping);
         take(&mut self.stiffness);
         self.t = t[0];
+        self.lag = t[1];
         self.work = w[0];
         self.hprev = hp;
         self.memory = Memory::from_f64(memory);
