@@ -320,15 +320,16 @@ impl Instance {
                 Some(sim)
             }
         };
-        if snap.state.is_none()
-            && matches!(
-                snap.mode,
-                Mode::InitializationMode | Mode::StepComplete | Mode::Terminated
-            )
-        {
+        // fmi2GetFMUstate records a simulation state exactly when the mode has one
+        if snap.state.is_some() != (snap.mode != Mode::Instantiated) {
             return Err(FmuError::rejected(format!(
-                "FMU state in {} has no simulation state",
-                snap.mode.name()
+                "FMU state in {} {} a simulation state",
+                snap.mode.name(),
+                if snap.state.is_some() {
+                    "holds"
+                } else {
+                    "lacks"
+                }
             )));
         }
         Ok((def, settings, sim))
