@@ -101,6 +101,16 @@ impl InputTable {
         })
     }
 
+    /// The time of the first row strictly between `t` and `end` (with the slack of
+    /// [`InputTable::apply`]): where the next internal step must end.
+    pub fn next_row_time(&self, t: f64, end: f64) -> Option<f64> {
+        let slack = 1e-12 * (1.0 + t.abs().max(end.abs()));
+        self.rows
+            .iter()
+            .map(|(rt, _)| *rt)
+            .find(|&rt| rt > t + slack && rt < end - slack)
+    }
+
     /// Sets `inputs` to the values of the latest row with time ≤ `t` (a relative slack of
     /// 1e-12 absorbs round-off in `t`); leaves them unchanged before the first row.
     pub fn apply(&self, t: f64, inputs: &mut [f64]) {

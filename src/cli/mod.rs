@@ -5,7 +5,9 @@ mod error;
 mod input;
 mod load;
 mod output;
+mod overrides;
 mod plot;
+mod select;
 mod simulate;
 
 use std::path::PathBuf;

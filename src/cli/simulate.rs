@@ -1,5 +1,7 @@
 //! `triad simulate`: runs the model through `sim::Simulation` (the FMU's stepping path) and
-//! writes one CSV row per communication step: `time`, then every output variable.
+//! writes one CSV row per communication step: `time`, then every output variable (or those
+//! chosen by `--outputs`). Parameters can be changed with `--set`; the rows of `--input` take
+//! effect at their own times (the internal steps end there).
 
 use std::io::{IsTerminal, Write};
 use std::path::PathBuf;
@@ -14,6 +16,7 @@ use super::input::InputTable;
 use super::load::load;
 use super::output::{finish, AtomicFile};
 use super::plot::{self, Series};
+use super::{overrides, select};
 
 /// Options of `triad simulate`.
 #[derive(Debug, Args)]
@@ -32,9 +35,19 @@ pub struct SimulateArgs {
     /// Integrator order (overrides solver.order).
     #[arg(long, value_parser = ["2", "4"])]
     pub order: Option<String>,
-    /// Input CSV: a `time` column and columns named like input variables (zero-order hold).
+    /// Input CSV: a `time` column and columns named like input variables, each row held from
+    /// its own time until the next (zero-order hold; the internal steps end at every row's
+    /// time, also between communication points).
     #[arg(long, value_name = "IN.csv")]
     pub input: Option<PathBuf>,
+    /// Set a parameter before the run (repeatable), e.g. `joint.elbow.q0=0.3`: any parameter
+    /// of `triad describe`, checked as fmi2SetReal checks it.
+    #[arg(long = "set", value_name = "NAME=VALUE")]
+    pub set: Vec<String>,
+    /// Write only the output columns whose names match (repeatable; comma-separated globs with
+    /// `*` and `?`, e.g. `joint.*.q,system.energy`); `time` is always written.
+    #[arg(long, value_name = "PATTERN[,PATTERN]")]
+    pub outputs: Vec<String>,
     /// Output CSV (default: standard output).
     #[arg(short, long, value_name = "OUT.csv")]
     pub output: Option<PathBuf>,
@@ -89,7 +102,9 @@ fn positive(name: &str, v: Option<f64>) -> Result<(), String> {
 /// Runs the command.
 pub fn run(args: &SimulateArgs) -> Result<(), CliError> {
     let spec = load(&args.model)?;
-    let (def, mut settings) = spec.lower()?;
+    let (mut def, mut settings) = spec.lower()?;
+    let table = VariableTable::new(&def, &settings).with_labels(&spec.labels());
+    overrides::apply(&args.set, &table, &mut def, &mut settings)?;
     positive("step", args.step)?;
     positive("max-step", args.max_step)?;
     if let Some(s) = args.max_step {
@@ -104,7 +119,6 @@ pub fn run(args: &SimulateArgs) -> Result<(), CliError> {
     if !(stop.is_finite() && stop > start) {
         return Err(format!("--stop must be after the start time {start} (got {stop})").into());
     }
-    let table = VariableTable::new(&def, &settings).with_labels(&spec.labels());
     let inputs = args
         .input
         .as_deref()
@@ -113,6 +127,7 @@ pub fn run(args: &SimulateArgs) -> Result<(), CliError> {
     let mut sim =
         Simulation::new(&def, settings, start).map_err(|e| format!("{}: {e}", args.model))?;
     let outputs: Vec<_> = table.with_causality(Causality::Output).collect();
+    let columns = select::select(&outputs, &select::patterns(&args.outputs))?;
     let plotted: Vec<usize> = outputs
         .iter()
         .enumerate()
@@ -149,9 +164,9 @@ pub fn run(args: &SimulateArgs) -> Result<(), CliError> {
                 .iter()
                 .map(|v| read_state(v.accessor, sim.state()).unwrap_or(f64::NAN))
                 .collect();
-            for x in &values {
+            for &k in &columns {
                 line.push(',');
-                line.push_str(&number(*x));
+                line.push_str(&number(values[k]));
             }
             line.push('\n');
             for (s, &k) in series.iter_mut().zip(&plotted) {
@@ -161,7 +176,7 @@ pub fn run(args: &SimulateArgs) -> Result<(), CliError> {
         };
     // names with commas (`R[1,2]`) are quoted, as CSV requires
     let header: Vec<String> = std::iter::once("time")
-        .chain(outputs.iter().map(|v| v.name.as_str()))
+        .chain(columns.iter().map(|&k| outputs[k].name.as_str()))
         .map(|n| {
             if n.contains(',') || n.contains('"') {
                 format!("\"{}\"", n.replace('"', "\"\""))
@@ -185,20 +200,30 @@ pub fn run(args: &SimulateArgs) -> Result<(), CliError> {
     );
     row(&sim, &mut sink, &mut series)?;
     for k in 1..=n {
-        if let Some(table) = &inputs {
-            table.apply(sim.time(), sim.state_mut().inputs_mut());
-        }
-        if let Some(msg) = sim.clamp_notice() {
-            bar.suspend(|| eprintln!("note: {msg}"));
-        }
         let target = if k == n { stop } else { start + k as f64 * h };
-        let dt = target - sim.time();
-        sim.advance(dt).map_err(|e| {
-            format!(
-                "{}: step from t = {} failed: {} (no output written)",
-                args.model, e.last_good_time, e.error
-            )
-        })?;
+        // internal steps end at the input rows' own times, so no row is skipped
+        loop {
+            if let Some(table) = &inputs {
+                table.apply(sim.time(), sim.state_mut().inputs_mut());
+            }
+            if let Some(msg) = sim.clamp_notice() {
+                bar.suspend(|| eprintln!("note: {msg}"));
+            }
+            let end = inputs
+                .as_ref()
+                .and_then(|t| t.next_row_time(sim.time(), target))
+                .unwrap_or(target);
+            let dt = end - sim.time();
+            sim.advance(dt).map_err(|e| {
+                format!(
+                    "{}: step from t = {} failed: {} (no output written)",
+                    args.model, e.last_good_time, e.error
+                )
+            })?;
+            if end == target {
+                break;
+            }
+        }
         row(&sim, &mut sink, &mut series)?;
         bar.inc(1);
     }

@@ -115,10 +115,7 @@ pub(crate) fn edit_distance(a: &str, b: &str) -> usize {
 }
 
 /// `; did you mean "x"?` for the closest candidate within a small edit distance, else empty.
-pub(crate) fn did_you_mean<'a>(
-    word: &str,
-    candidates: impl IntoIterator<Item = &'a str>,
-) -> String {
+pub fn did_you_mean<'a>(word: &str, candidates: impl IntoIterator<Item = &'a str>) -> String {
     let best = candidates
         .into_iter()
         .map(|c| (edit_distance(&word.to_lowercase(), &c.to_lowercase()), c))

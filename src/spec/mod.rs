@@ -53,7 +53,7 @@ mod shipped;
 mod validate;
 mod values;
 
-pub use error::{Problem, SpecErrors};
+pub use error::{did_you_mean, Problem, SpecErrors};
 pub use schema::{
     BodySpec, Experiment, Format, InitialSpec, JointKind, JointSpec, LoadSpec, OriginSpec,
     SiteSpec, SolverSpec, Spec, VisualSpec, JOINT_TYPES,
