@@ -12,7 +12,6 @@ mod fmu_support;
 
 use fmu_support::*;
 use triad::ffi::common::*;
-use triad::ffi::cosim::*;
 use triad::ffi::getset::*;
 use triad::ffi::state::*;
 use triad::ffi::types::*;
