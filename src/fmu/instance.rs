@@ -321,6 +321,11 @@ impl Instance {
         let dst = sim.state_mut().inputs_mut();
         let n = dst.len().min(inputs.len());
         dst[..n].copy_from_slice(&inputs[..n]);
+        if let Some(what) = sim.state().outputs().first_non_finite() {
+            return Err(format!(
+                "the parameters give a non-finite initial output ({what})"
+            ));
+        }
         Ok(sim)
     }
 

@@ -219,7 +219,33 @@ impl Instance {
             }
             _ => None,
         };
+        // a new stiffness changes the spring energy output at once: try it on a copy first
+        let respring = self.mode == Mode::StepComplete
+            && updates
+                .iter()
+                .any(|(acc, _)| matches!(acc, Accessor::Stiffness(_)));
+        let resprung = match (&self.sim, respring) {
+            (Some(sim), true) => {
+                let mut sim = sim.clone();
+                for (acc, value) in &updates {
+                    if let Accessor::Stiffness(j) = acc {
+                        sim.state_mut().set_stiffness(*j, *value);
+                    }
+                }
+                sim.refresh_outputs();
+                if let Some(what) = sim.state().outputs().first_non_finite() {
+                    return Err(FmuError::rejected(format!(
+                        "the new stiffness gives a non-finite output ({what})"
+                    )));
+                }
+                Some(sim)
+            }
+            _ => None,
+        };
         // apply
+        if let Some(sim) = resprung {
+            self.sim = Some(sim);
+        }
         if let Some(def) = def {
             self.def = def;
             self.settings = settings;
@@ -244,6 +270,7 @@ impl Instance {
                     sim.state_mut().set_damping(j, value)
                 }
                 (Accessor::Stiffness(j), Some(sim)) if self.mode == Mode::StepComplete => {
+                    // already set on the checked copy; refreshing again is harmless
                     sim.state_mut().set_stiffness(j, value);
                     springs_changed = true;
                 }
