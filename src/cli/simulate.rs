@@ -108,6 +108,7 @@ pub fn run(args: &SimulateArgs) -> Result<(), CliError> {
     positive("step", args.step)?;
     positive("max-step", args.max_step)?;
     if let Some(s) = args.max_step {
+        triad::mechanics::ranges::max_step(s).map_err(|e| format!("--max-step {e}"))?;
         settings.max_step = s;
     }
     if let Some(o) = &args.order {

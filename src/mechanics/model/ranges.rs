@@ -33,11 +33,21 @@ pub const TOLERANCE_MAX: f64 = 1e-3;
 /// Largest `solver.max_substeps` (the largest `fmi2Integer`).
 pub const MAX_SUBSTEPS_MAX: f64 = 2_147_483_647.0;
 
+/// `v` as a reader expects it: plain for ordinary magnitudes, exponent form otherwise.
+fn show(v: f64) -> String {
+    let a = v.abs();
+    if v == 0.0 || !v.is_finite() || (1e-5..1e16).contains(&a) {
+        format!("{v}")
+    } else {
+        format!("{v:e}")
+    }
+}
+
 fn finite(v: f64) -> Result<(), String> {
     if v.is_finite() {
         Ok(())
     } else {
-        Err(format!("must be finite (got {v})"))
+        Err(format!("must be finite (got {})", show(v)))
     }
 }
 
@@ -58,7 +68,7 @@ pub fn non_negative(v: f64) -> Result<(), String> {
     if v >= 0.0 {
         Ok(())
     } else {
-        Err(format!("must be >= 0 (got {v})"))
+        Err(format!("must be >= 0 (got {})", show(v)))
     }
 }
 
@@ -71,7 +81,7 @@ pub fn positive(v: f64) -> Result<(), String> {
     if v > 0.0 {
         Ok(())
     } else {
-        Err(format!("must be > 0 (got {v})"))
+        Err(format!("must be > 0 (got {})", show(v)))
     }
 }
 
@@ -84,7 +94,8 @@ pub fn max_step(v: f64) -> Result<(), String> {
         Ok(())
     } else {
         Err(format!(
-            "must be in [{MAX_STEP_MIN:e}, {MAX_STEP_MAX:e}] s (got {v})"
+            "must be in [{MAX_STEP_MIN:e}, {MAX_STEP_MAX:e}] s (got {})",
+            show(v)
         ))
     }
 }
@@ -98,7 +109,8 @@ pub fn tolerance(v: f64) -> Result<(), String> {
         Ok(())
     } else {
         Err(format!(
-            "must be in [{TOLERANCE_MIN:e}, {TOLERANCE_MAX:e}) (got {v})"
+            "must be in [{TOLERANCE_MIN:e}, {TOLERANCE_MAX:e}) (got {})",
+            show(v)
         ))
     }
 }
@@ -111,7 +123,7 @@ pub fn order(v: f64) -> Result<u8, String> {
     match v {
         2.0 => Ok(2),
         4.0 => Ok(4),
-        _ => Err(format!("must be 2 or 4 (got {v})")),
+        _ => Err(format!("must be 2 or 4 (got {})", show(v))),
     }
 }
 
@@ -124,7 +136,8 @@ pub fn max_substeps(v: f64) -> Result<u32, String> {
         Ok(v as u32)
     } else {
         Err(format!(
-            "must be a whole number in [1, {MAX_SUBSTEPS_MAX}] (got {v})"
+            "must be a whole number in [1, {MAX_SUBSTEPS_MAX}] (got {})",
+            show(v)
         ))
     }
 }
