@@ -16,4 +16,5 @@ pub mod sim;
 pub mod spec;
 pub mod urdf;
 pub mod variables;
+pub mod viewer;
 pub mod xml;

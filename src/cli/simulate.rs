@@ -41,6 +41,9 @@ pub struct SimulateArgs {
     /// Also plot joint coordinates, energy and work to this PNG.
     #[arg(long, value_name = "OUT.png")]
     pub plot: Option<PathBuf>,
+    /// Also write a 3-D replay of the run to this HTML file (as `triad animate`).
+    #[arg(long, value_name = "OUT.html")]
+    pub animate: Option<PathBuf>,
 }
 
 /// Where the CSV goes: a temporary file renamed on success, or memory printed on success.
@@ -209,6 +212,7 @@ pub fn run(args: &SimulateArgs) -> Result<(), CliError> {
             .map_err(|e| format!("cannot plot to {}: {e}", path.display()))?;
         pngs.push(png);
     }
+    let mut printed = None;
     match (sink, file, args.output.as_deref()) {
         (Sink::File(w), Some(f), Some(path)) => {
             finish(w, path)?;
@@ -220,11 +224,16 @@ pub fn run(args: &SimulateArgs) -> Result<(), CliError> {
                 .write_all(&bytes)
                 .and_then(|()| stdout.flush())
                 .map_err(write_err)?;
+            printed = Some(bytes);
         }
         _ => {}
     }
     for png in pngs {
         png.commit()?;
+    }
+    if let Some(html) = &args.animate {
+        let csv = args.output.as_deref();
+        super::animate::after_simulate(&args.model, &spec, csv, printed.as_deref(), html)?;
     }
     Ok(())
 }
