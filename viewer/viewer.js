@@ -195,7 +195,7 @@
     const dir = new T.Vector3(0.55, -1.0, 0.42).normalize();
     const fov = (camera.fov * Math.PI) / 180;
     const aspect = Math.min(camera.aspect, 1);
-    const dist = (radius / Math.sin(fov / 2)) * 1.08 / Math.max(aspect, 0.5);
+    const dist = (radius / Math.sin(fov / 2)) * 1.2 / Math.max(aspect, 0.5);
     camera.position.copy(centre).addScaledVector(dir, dist);
     controls.target.copy(centre);
     camera.near = dist / 1000;
@@ -396,6 +396,7 @@
   optSites.addEventListener('change', () => showSites(optSites.checked));
   optSignals.addEventListener('change', () => showSignals(optSignals.checked));
   if (!data.sites.length) optSites.parentElement.style.display = 'none';
+  if (!signals.length || n < 2) optSignals.parentElement.style.display = 'none';
 
   window.addEventListener('resize', () => {
     camera.aspect = window.innerWidth / window.innerHeight;
