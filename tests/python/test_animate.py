@@ -198,6 +198,23 @@ def test_fmu_documentation_scene(chromium, triad, tmp_path):
             assert covered(mask, x, y), f"no robot pixel at {p}"
 
 
+def test_main_job_writes_results_html(triad, tmp_path):
+    """The README's main job (scripts/main_job.sh): the fmpy closed loop writes results.csv with
+    the poses, and `triad animate` makes results.html of it (here over 0.3 s)."""
+    import sys
+
+    urdf = str(ROOT / "modelDescription/robot_arm/robot_arm.urdf")
+    fmu = tmp_path / "robot_arm.fmu"
+    run(triad, "build", urdf, "-o", str(fmu), cwd=tmp_path)
+    run(sys.executable, str(ROOT / "scripts/main_job.py"), str(fmu), "--stop", "0.3",
+        "--csv", "results.csv", "--plot", "results.png", cwd=tmp_path)
+    run(triad, "animate", urdf, "results.csv", "-o", "results.html", cwd=tmp_path)
+    header, data = read_csv(tmp_path / "results.csv")
+    html = (tmp_path / "results.html").read_text()
+    assert f'"frames":{len(data)}' in html
+    assert all(f"body.{b}.R[3,3]" in header for b in ("shoulder_pan_link", "wrist_3_link"))
+
+
 def test_fmpy_example(triad, tmp_path):
     """examples/animate_fmpy.py: an fmpy run written by fmpy's write_csv replays, pose for pose."""
     import base64
