@@ -4,6 +4,7 @@
 //! colours) into triangle lists.
 
 mod dae;
+mod dae_tree;
 mod load;
 mod obj;
 mod resolve;
