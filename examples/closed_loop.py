@@ -20,9 +20,10 @@ KP = {"shoulder_pan": 120.0, "shoulder_lift": 600.0, "elbow": 240.0, "wrist_1": 
 KD = {"shoulder_pan": 20.0, "shoulder_lift": 45.0, "elbow": 15.0, "wrist_1": 5.0, "wrist_2": 2.5, "wrist_3": 0.3}
 
 
-def closed_loop(fmu_path, stop=None, step=None, set_point=SET_POINT, kp=KP, kd=KD):
+def closed_loop(fmu_path, stop=None, step=None, set_point=SET_POINT, kp=KP, kd=KD, record=()):
     """Runs the loop; returns a dict of numpy arrays: time, q (n x joints), qd, tau, energy, work,
-    and the joint names."""
+    the joint names, and under "extra" the recorded values of the output variables named in
+    `record` (e.g. the body poses body.B.r[i], body.B.R[i,j] for `triad animate`)."""
     md = read_model_description(fmu_path)
     vr = {v.name: v.valueReference for v in md.modelVariables}
     joints = [j for j in set_point if f"joint.{j}.tau" in vr]
@@ -43,6 +44,9 @@ def closed_loop(fmu_path, stop=None, step=None, set_point=SET_POINT, kp=KP, kd=K
         qd_vr = [vr[f"joint.{j}.qd"] for j in joints]
         tau_vr = [vr[f"joint.{j}.tau"] for j in joints]
         ew_vr = [vr["system.energy"], vr["system.work"]]
+        record = list(record)
+        extra_vr = [vr[name] for name in record]
+        extra = []
         ref = np.array([set_point[j] for j in joints])
         gp = np.array([kp[j] for j in joints])
         gd = np.array([kd[j] for j in joints])
@@ -56,6 +60,8 @@ def closed_loop(fmu_path, stop=None, step=None, set_point=SET_POINT, kp=KP, kd=K
             tau = gp * (ref - q) - gd * qd
             for k, v in zip(("time", "q", "qd", "tau", "energy", "work"), (t, q, qd, tau, energy, work)):
                 rec[k].append(v)
+            if extra_vr:
+                extra.append(fmu.getReal(extra_vr))
             if i == n:
                 break
             fmu.setReal(tau_vr, list(tau))
@@ -68,6 +74,8 @@ def closed_loop(fmu_path, stop=None, step=None, set_point=SET_POINT, kp=KP, kd=K
     out = {k: np.array(v) for k, v in rec.items()}
     out["joints"] = joints
     out["set_point"] = ref
+    values = np.array(extra).reshape(len(out["time"]), len(record))
+    out["extra"] = {name: values[:, i] for i, name in enumerate(record)}
     return out
 
 

@@ -1,6 +1,7 @@
 #!/usr/bin/env python3
 """The README's main job: the robot_arm FMU in closed loop under fmpy (PD controller in Python,
-examples/closed_loop.py), results written to CSV and plotted.
+examples/closed_loop.py), results written to CSV (with the bodies' poses, which
+`triad animate` replays: scripts/main_job.sh writes results.html) and plotted.
 
     python scripts/main_job.py path/to/robot_arm.fmu [--csv results.csv] [--plot results.png]
 
@@ -16,16 +17,27 @@ sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), ".."
 import closed_loop  # noqa: E402
 
 
+def poses(fmu):
+    """Names of the pose outputs (body.B.r[i], body.B.R[i,j], and the sites') of an FMU."""
+    from fmpy import read_model_description
+
+    return [v.name for v in read_model_description(fmu).modelVariables
+            if v.causality == "output" and v.name.split(".")[0] in ("body", "site")
+            and v.name.split(".")[-1][:2] in ("r[", "R[")]
+
+
 def write_csv(path, r):
     joints = r["joints"]
+    extra = list(r.get("extra", {}))
     header = ["time"] + [f"joint.{j}.q" for j in joints] + [f"joint.{j}.qd" for j in joints] \
-        + [f"joint.{j}.tau" for j in joints] + ["system.energy", "system.work", "energy_minus_work"]
+        + [f"joint.{j}.tau" for j in joints] + ["system.energy", "system.work", "energy_minus_work"] + extra
     with open(path, "w", newline="") as f:
         w = csv.writer(f)
         w.writerow(header)
         for i, t in enumerate(r["time"]):
             e, wk = r["energy"][i], r["work"][i]
-            w.writerow([repr(float(x)) for x in [t, *r["q"][i], *r["qd"][i], *r["tau"][i], e, wk, e - wk]])
+            more = [r["extra"][name][i] for name in extra]
+            w.writerow([repr(float(x)) for x in [t, *r["q"][i], *r["qd"][i], *r["tau"][i], e, wk, e - wk, *more]])
 
 
 def plot(path, r):
@@ -60,7 +72,7 @@ def main():
     p.add_argument("--plot", default="results.png")
     p.add_argument("--stop", type=float)
     a = p.parse_args()
-    r = closed_loop.closed_loop(a.fmu, a.stop)
+    r = closed_loop.closed_loop(a.fmu, a.stop, record=poses(a.fmu))
     write_csv(a.csv, r)
     plot(a.plot, r)
     err, drift = closed_loop.summary(r)

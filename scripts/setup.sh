@@ -2,11 +2,19 @@
 # Installs what triad needs on a fresh Debian machine: system libraries for the plotting
 # (fontconfig + a font), the Rust build, and the Python venv (.venv) used by the FMU tests,
 # the examples and the main job. Idempotent: steps already done are skipped.
+#
+#     bash scripts/setup.sh            # the above
+#     bash scripts/setup.sh --browser  # and Debian's chromium, for the 3-D replay's browser test
+#                                      # (tests/python/test_animate.py); .ci/run asks for it
 set -euo pipefail
 cd "$(dirname "$0")/.."
 
+packages=(libfontconfig1-dev fonts-dejavu-core pkg-config)
+if [ "${1:-}" = "--browser" ]; then
+  packages+=(chromium)
+fi
 need_apt=()
-for pkg in libfontconfig1-dev fonts-dejavu-core pkg-config; do
+for pkg in "${packages[@]}"; do
   dpkg -s "$pkg" >/dev/null 2>&1 || need_apt+=("$pkg")
 done
 if [ ${#need_apt[@]} -gt 0 ]; then

@@ -1,11 +1,15 @@
 //! `triad build`: the .fmu archive (FMI 2.0.4 §2.3). Entries, in sorted order:
 //! `binaries/<platform>/<modelIdentifier>.so` (the crate's own cdylib — one library serves every
-//! model), `documentation/index.html` (generated variable list), `modelDescription.xml`,
+//! model), `documentation/index.html` (generated variable list), `documentation/scene.html` (the
+//! model in its initial pose, in the 3-D viewer: a tool that shows the documentation shows the
+//! robot), `modelDescription.xml`,
 //! `resources/model.json` (canonical spec JSON, read by `fmi2Instantiate`). Deterministic: fixed
 //! 1980-01-01 timestamps, fixed permissions, deflate — the same input gives the same bytes.
 
 use crate::fmu::contract::{self, Spec};
-use crate::variables::{Causality, VariableTable};
+use crate::sim::Simulation;
+use crate::variables::{read_state, Causality, VariableTable};
+use crate::viewer::{self, Recording, ResultTable};
 use crate::xml::{write_model_description, Meta};
 use std::error::Error;
 use std::fmt::Write as _;
@@ -118,11 +122,51 @@ pub fn documentation(meta: &Meta, table: &VariableTable) -> String {
     h
 }
 
+/// The generated `documentation/scene.html`: the model at its start time, as the viewer draws
+/// it (meshes looked up from `model_dir`); `None` if the model does not initialise.
+#[must_use]
+pub fn scene(spec: &Spec, model_dir: Option<&Path>) -> Option<String> {
+    let (def, settings) = spec.lower().ok()?;
+    let sim = Simulation::new(&def, settings, spec.experiment.start).ok()?;
+    let table = contract::table(spec, &def, &settings);
+    // the initial outputs as a one-row result table, read like a CSV
+    let mut pose = ResultTable {
+        origin: "the initial pose".into(),
+        ..ResultTable::default()
+    };
+    let outputs = table.with_causality(Causality::Output);
+    for (name, value) in std::iter::once(("time".to_string(), sim.time())).chain(outputs.map(|v| {
+        (
+            v.name.clone(),
+            read_state(v.accessor, sim.state()).unwrap_or(f64::NAN),
+        )
+    })) {
+        if name == "time" || Recording::reads(&name) {
+            pose.columns.insert(name.clone(), vec![value]);
+        }
+        pose.header.push(name);
+    }
+    let recording = Recording::from_table(&pose, spec).ok()?;
+    Some(viewer::replay(spec, model_dir, &recording, &viewer::Options::default()).html)
+}
+
 /// The .fmu archive of `spec` with the shared library `cdylib` (its bytes), deterministic.
 ///
 /// # Errors
 /// A spec that does not lower, or a zip error.
 pub fn fmu_bytes(spec: &Spec, cdylib: &[u8]) -> Result<Vec<u8>, Box<dyn Error>> {
+    fmu_bytes_at(spec, None, cdylib)
+}
+
+/// [`fmu_bytes`] for a model file in `model_dir` (where the scene's meshes are looked up).
+///
+/// # Errors
+/// As [`fmu_bytes`].
+pub fn fmu_bytes_at(
+    spec: &Spec,
+    model_dir: Option<&Path>,
+    cdylib: &[u8],
+) -> Result<Vec<u8>, Box<dyn Error>> {
     let (def, settings) = spec.lower()?;
     let table = contract::table(spec, &def, &settings);
     let meta = Meta::new(spec, &settings, &table);
@@ -140,12 +184,15 @@ pub fn fmu_bytes(spec: &Spec, cdylib: &[u8]) -> Result<Vec<u8>, Box<dyn Error>> 
             0o644,
         ),
         ("modelDescription.xml".into(), xml.into_bytes(), 0o644),
-        (
-            "resources/model.json".into(),
-            spec.canonical_json().into_bytes(),
-            0o644,
-        ),
     ];
+    if let Some(html) = scene(spec, model_dir) {
+        entries.push(("documentation/scene.html".into(), html.into_bytes(), 0o644));
+    }
+    entries.extend([(
+        "resources/model.json".into(),
+        spec.canonical_json().into_bytes(),
+        0o644,
+    )]);
     entries.sort_by(|a, b| a.0.cmp(&b.0));
     let mut zip = ZipWriter::new(std::io::Cursor::new(Vec::new()));
     for (name, data, mode) in entries {
@@ -165,7 +212,7 @@ pub fn fmu_bytes(spec: &Spec, cdylib: &[u8]) -> Result<Vec<u8>, Box<dyn Error>> 
 /// # Errors
 /// Spec problems (every one, with file and path), a missing cdylib, I/O errors.
 pub fn build_fmu(spec_path: &Path, out: &Path) -> Result<PathBuf, Box<dyn Error>> {
-    build_fmu_of(&Spec::from_path(spec_path)?, out)
+    build_fmu_from(&Spec::from_path(spec_path)?, spec_path.parent(), out)
 }
 
 /// Writes the FMU of a validated `spec` to `out` (as [`build_fmu`]).
@@ -173,9 +220,22 @@ pub fn build_fmu(spec_path: &Path, out: &Path) -> Result<PathBuf, Box<dyn Error>
 /// # Errors
 /// If the cdylib cannot be found or read, or the FMU cannot be written.
 pub fn build_fmu_of(spec: &Spec, out: &Path) -> Result<PathBuf, Box<dyn Error>> {
+    build_fmu_from(spec, None, out)
+}
+
+/// [`build_fmu_of`] for a model file in `model_dir` (where the scene's meshes are looked up).
+///
+/// # Errors
+/// As [`build_fmu_of`].
+pub fn build_fmu_from(
+    spec: &Spec,
+    model_dir: Option<&Path>,
+    out: &Path,
+) -> Result<PathBuf, Box<dyn Error>> {
     let lib = find_cdylib()?;
-    let bytes = fmu_bytes(
+    let bytes = fmu_bytes_at(
         spec,
+        model_dir,
         &std::fs::read(&lib).map_err(|e| format!("{}: {e}", lib.display()))?,
     )?;
     if let Some(dir) = out.parent().filter(|d| !d.as_os_str().is_empty()) {

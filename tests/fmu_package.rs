@@ -1,4 +1,4 @@
-//! The .fmu archive (FMI 2.0.4 §2.3): the four expected entries in sorted order with forward
+//! The .fmu archive (FMI 2.0.4 §2.3): the five expected entries in sorted order with forward
 //! slashes, `modelIdentifier` = the .so name, deterministic bytes (same input → same archive),
 //! and a `modelDescription.xml` whose GUID is the one `fmi2Instantiate` recomputes from
 //! `resources/model.json` — so the packaged FMU instantiates from its own unzipped resources.
@@ -36,12 +36,13 @@ fn archive_layout_determinism_and_guid() {
         vec![
             so_name.as_str(),
             "documentation/index.html",
+            "documentation/scene.html",
             "modelDescription.xml",
             "resources/model.json"
         ]
     );
     assert_eq!(entries[0].1, so);
-    let xml = String::from_utf8(entries[2].1.clone()).unwrap();
+    let xml = String::from_utf8(entries[3].1.clone()).unwrap();
     assert!(xml.contains(&format!("guid=\"{}\"", m.guid)));
     assert!(xml.contains(&format!("modelIdentifier=\"{}\"", m.spec.name)));
     assert!(!xml.contains("generationDateAndTime"));
@@ -49,6 +50,11 @@ fn archive_layout_determinism_and_guid() {
     for v in &m.table.vars {
         assert!(html.contains(&v.name), "{} missing from index.html", v.name);
     }
+    // the scene: the initial pose, one frame, every body
+    let scene = String::from_utf8(entries[2].1.clone()).unwrap();
+    let poses = triad::viewer::decode(triad::viewer::payload_of(&scene).unwrap()).unwrap();
+    assert_eq!(poses.time.len(), 1);
+    assert_eq!(poses.bodies.len(), m.spec.body.len());
 
     // unpack and instantiate from the archive's own resources
     let dir = tempfile::tempdir().unwrap();

@@ -131,7 +131,7 @@ pub fn build(model: &Path, output: Option<&Path>) -> Result<(), CliError> {
         || PathBuf::from(format!("{}.fmu", spec.name)),
         Path::to_path_buf,
     );
-    let written = triad::package::build_fmu_of(&spec, &out)
+    let written = triad::package::build_fmu_from(&spec, model.parent(), &out)
         .map_err(|e| format!("{}: {e}", model.display()))?;
     println!("wrote {}", written.display());
     Ok(())

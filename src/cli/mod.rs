@@ -1,5 +1,6 @@
 //! Argument parsing and dispatch of the `triad` command line.
 
+mod animate;
 mod commands;
 mod error;
 mod input;
@@ -43,6 +44,10 @@ pub enum Command {
     /// Run MODEL natively and write every output variable every --step seconds as CSV.
     #[command(allow_negative_numbers = true)]
     Simulate(simulate::SimulateArgs),
+    /// Write a 3-D replay of a result CSV: one self-contained HTML file (works offline) that
+    /// places the bodies from their recorded poses, with play/pause, time slider, speed, loop,
+    /// orbit/pan/zoom, frames, sites, a trace and a panel of joint angles and energy - work.
+    Animate(animate::AnimateArgs),
     /// Package an FMI 2.0 Co-Simulation FMU for MODEL.
     Build {
         /// Model spec (.toml or .json) or robot description (.urdf).
@@ -85,6 +90,7 @@ pub fn run(cli: Cli) -> ExitCode {
         Command::Check { model } => commands::check(&model),
         Command::Describe { model } => commands::describe(&model),
         Command::Simulate(args) => simulate::run(&args),
+        Command::Animate(args) => animate::run(&args),
         Command::Build { model, output } => commands::build(&model, output.as_deref()),
         Command::Import {
             robot,

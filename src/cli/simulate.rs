@@ -54,6 +54,9 @@ pub struct SimulateArgs {
     /// Also plot joint coordinates, energy and work to this PNG.
     #[arg(long, value_name = "OUT.png")]
     pub plot: Option<PathBuf>,
+    /// Also write a 3-D replay of the run to this HTML file (as `triad animate`).
+    #[arg(long, value_name = "OUT.html")]
+    pub animate: Option<PathBuf>,
 }
 
 /// Where the CSV goes: a temporary file renamed on success, or memory printed on success.
@@ -157,36 +160,57 @@ pub fn run(args: &SimulateArgs) -> Result<(), CliError> {
     };
     let mut pngs = Vec::new();
     let write_err = |e: std::io::Error| CliError::Other(format!("cannot write the output: {e}"));
-    let row =
-        |sim: &Simulation, sink: &mut Sink, series: &mut Vec<Series>| -> Result<(), CliError> {
-            let t = sim.time();
-            let mut line = number(t);
-            let values: Vec<f64> = outputs
-                .iter()
-                .map(|v| read_state(v.accessor, sim.state()).unwrap_or(f64::NAN))
-                .collect();
-            for &k in &columns {
-                line.push(',');
-                line.push_str(&number(values[k]));
-            }
-            line.push('\n');
-            for (s, &k) in series.iter_mut().zip(&plotted) {
-                s.points.push((t, values[k]));
-            }
-            sink.write_all(line.as_bytes()).map_err(write_err)
-        };
+    // the replay reads every pose, whichever columns --outputs writes: with --animate the
+    // whole result is also kept in memory
+    let all: Vec<usize> = (0..outputs.len()).collect();
+    let mut full: Option<Vec<u8>> = args.animate.as_ref().map(|_| Vec::new());
+    let line = |t: f64, values: &[f64], cols: &[usize]| -> String {
+        let mut line = number(t);
+        for &k in cols {
+            line.push(',');
+            line.push_str(&number(values[k]));
+        }
+        line.push('\n');
+        line
+    };
+    let row = |sim: &Simulation,
+               sink: &mut Sink,
+               series: &mut Vec<Series>,
+               full: &mut Option<Vec<u8>>|
+     -> Result<(), CliError> {
+        let t = sim.time();
+        let values: Vec<f64> = outputs
+            .iter()
+            .map(|v| read_state(v.accessor, sim.state()).unwrap_or(f64::NAN))
+            .collect();
+        for (s, &k) in series.iter_mut().zip(&plotted) {
+            s.points.push((t, values[k]));
+        }
+        if let Some(full) = full {
+            full.extend_from_slice(line(t, &values, &all).as_bytes());
+        }
+        sink.write_all(line(t, &values, &columns).as_bytes())
+            .map_err(write_err)
+    };
     // names with commas (`R[1,2]`) are quoted, as CSV requires
-    let header: Vec<String> = std::iter::once("time")
-        .chain(columns.iter().map(|&k| outputs[k].name.as_str()))
-        .map(|n| {
-            if n.contains(',') || n.contains('"') {
-                format!("\"{}\"", n.replace('"', "\"\""))
-            } else {
-                n.to_string()
-            }
-        })
-        .collect();
-    writeln!(sink, "{}", header.join(",")).map_err(write_err)?;
+    let header = |cols: &[usize]| -> String {
+        let names: Vec<String> = std::iter::once("time")
+            .chain(cols.iter().map(|&k| outputs[k].name.as_str()))
+            .map(|n| {
+                if n.contains(',') || n.contains('"') {
+                    format!("\"{}\"", n.replace('"', "\"\""))
+                } else {
+                    n.to_string()
+                }
+            })
+            .collect();
+        names.join(",") + "\n"
+    };
+    if let Some(full) = &mut full {
+        full.extend_from_slice(header(&all).as_bytes());
+    }
+    sink.write_all(header(&columns).as_bytes())
+        .map_err(write_err)?;
 
     // communication points start + k·h, the last one clipped to stop
     let n = ((stop - start) / h * (1.0 - 1e-12)).ceil().max(1.0) as u64;
@@ -199,7 +223,7 @@ pub fn run(args: &SimulateArgs) -> Result<(), CliError> {
         ProgressStyle::with_template("{bar:40} {pos}/{len} steps, eta {eta}")
             .unwrap_or_else(|_| ProgressStyle::default_bar()),
     );
-    row(&sim, &mut sink, &mut series)?;
+    row(&sim, &mut sink, &mut series, &mut full)?;
     for k in 1..=n {
         let target = if k == n { stop } else { start + k as f64 * h };
         // internal steps end at the input rows' own times, so no row is skipped
@@ -225,7 +249,7 @@ pub fn run(args: &SimulateArgs) -> Result<(), CliError> {
                 break;
             }
         }
-        row(&sim, &mut sink, &mut series)?;
+        row(&sim, &mut sink, &mut series, &mut full)?;
         bar.inc(1);
     }
     bar.finish_and_clear();
@@ -251,6 +275,9 @@ pub fn run(args: &SimulateArgs) -> Result<(), CliError> {
     }
     for png in pngs {
         png.commit()?;
+    }
+    if let (Some(html), Some(full)) = (&args.animate, &full) {
+        super::animate::after_simulate(&args.model, &spec, full, html)?;
     }
     Ok(())
 }
