@@ -4,6 +4,7 @@
 use std::collections::HashMap;
 
 use super::common::{check_finite, normalized};
+use crate::mechanics::ranges;
 use crate::spec::error::{did_you_mean, Report};
 use crate::spec::schema::{JointKind, JointSpec, Spec};
 
@@ -82,11 +83,8 @@ fn fields(report: &mut Report, p: &str, j: &JointSpec) {
         );
     }
     for (field, v) in [("damping", j.damping), ("stiffness", j.stiffness)] {
-        if !(v >= 0.0 && v.is_finite()) {
-            report.push(
-                format!("{p}.{field}"),
-                format!("must be finite and >= 0 (got {v})"),
-            );
+        if let Err(e) = ranges::non_negative(v) {
+            report.push(format!("{p}.{field}"), e);
         } else if v > 0.0 && j.kind == JointKind::Fixed {
             report.push(
                 format!("{p}.{field}"),
@@ -124,12 +122,16 @@ fn limits(report: &mut Report, p: &str, j: &JointSpec) {
                     kind_name(j.kind)
                 ),
             );
-        } else if !v.is_finite() {
-            report.push(format!("{p}.{field}"), format!("must be finite (got {v})"));
-        } else if field == "stop_damping" && v < 0.0 {
-            report.push(format!("{p}.{field}"), format!("must be >= 0 (got {v})"));
-        } else if matches!(field, "effort" | "stop_stiffness") && v <= 0.0 {
-            report.push(format!("{p}.{field}"), format!("must be > 0 (got {v})"));
+        } else {
+            // the FMU's fmi2SetReal applies the same rules to these parameters
+            let check = match field {
+                "stop_damping" => ranges::non_negative(v),
+                "effort" | "stop_stiffness" => ranges::positive(v),
+                _ => ranges::any_finite(v),
+            };
+            if let Err(e) = check {
+                report.push(format!("{p}.{field}"), e);
+            }
         }
     }
     if let (Some(lo), Some(hi)) = (j.lower, j.upper) {
