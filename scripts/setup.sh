@@ -9,6 +9,11 @@
 set -euo pipefail
 cd "$(dirname "$0")/.."
 
+# /dev/null must be the null device (see .ci/run): repair a machine where it became a file
+if [ ! -c /dev/null ] && [ "$(id -u)" = 0 ]; then
+  rm -f /dev/null && mknod -m 666 /dev/null c 1 3
+fi
+
 packages=(libfontconfig1-dev fonts-dejavu-core pkg-config)
 if [ "${1:-}" = "--browser" ]; then
   packages+=(chromium)
