@@ -5,22 +5,11 @@
 //! A 10 s run of the six-joint arm at 100 Hz makes a page well under 10 MB.
 
 mod common;
-use common::triad;
+use common::{read_csv, triad};
 
 use std::path::Path;
 
 use triad::math::{Mat3, Vec3};
-
-/// Header and rows of a result CSV.
-fn read_csv(path: &Path) -> (Vec<String>, Vec<Vec<f64>>) {
-    let mut reader = csv::Reader::from_path(path).unwrap();
-    let header = reader.headers().unwrap().iter().map(String::from).collect();
-    let rows = reader
-        .records()
-        .map(|r| r.unwrap().iter().map(|x| x.parse().unwrap()).collect())
-        .collect();
-    (header, rows)
-}
 
 /// Angle of the rotation `a⁻¹ b`, rad (well conditioned near 0).
 fn angle(a: &Mat3, b: &Mat3) -> f64 {

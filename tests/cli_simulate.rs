@@ -5,9 +5,7 @@
 //! work–energy balance of the energy–momentum scheme). Errors write no file.
 
 mod common;
-use common::triad;
-
-use std::path::Path;
+use common::{read_csv, triad};
 
 use triad::sim::Simulation;
 use triad::spec::{bundled, Format, Spec};
@@ -18,22 +16,6 @@ fn tol(x: f64) -> f64 {
         .ok()
         .and_then(|s| s.parse().ok())
         .unwrap_or(1.0)
-}
-
-/// Header and rows of a CSV written by `simulate`.
-fn read_csv(path: &Path) -> (Vec<String>, Vec<Vec<f64>>) {
-    let mut reader = csv::Reader::from_path(path).unwrap();
-    let header = reader.headers().unwrap().iter().map(String::from).collect();
-    let rows = reader
-        .records()
-        .map(|r| {
-            r.unwrap()
-                .iter()
-                .map(|x| x.parse::<f64>().unwrap())
-                .collect()
-        })
-        .collect();
-    (header, rows)
 }
 
 fn column(header: &[String], rows: &[Vec<f64>], name: &str) -> Vec<f64> {

@@ -4,19 +4,9 @@
 //! choosing the columns). Bad values: a clear message, non-zero exit, no file written.
 
 mod common;
-use common::triad;
+use common::{read_csv, triad};
 
 use std::path::Path;
-
-fn read_csv(path: &Path) -> (Vec<String>, Vec<Vec<f64>>) {
-    let mut reader = csv::Reader::from_path(path).unwrap();
-    let header = reader.headers().unwrap().iter().map(String::from).collect();
-    let rows = reader
-        .records()
-        .map(|r| r.unwrap().iter().map(|x| x.parse().unwrap()).collect())
-        .collect();
-    (header, rows)
-}
 
 fn run_ok(args: &[&str], dir: &Path) {
     let out = triad(args, dir);

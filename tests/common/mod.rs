@@ -32,6 +32,17 @@ pub fn triad(args: &[&str], cwd: &std::path::Path) -> std::process::Output {
         .expect("run triad")
 }
 
+/// Header and rows of a result CSV (as `triad simulate` writes it: every cell a number).
+pub fn read_csv(path: &std::path::Path) -> (Vec<String>, Vec<Vec<f64>>) {
+    let mut reader = csv::Reader::from_path(path).unwrap();
+    let header = reader.headers().unwrap().iter().map(String::from).collect();
+    let rows = reader
+        .records()
+        .map(|r| r.unwrap().iter().map(|x| x.parse().unwrap()).collect())
+        .collect();
+    (header, rows)
+}
+
 /// Scales a tolerance by the env knob `TRIAD_TOL_SCALE` (default 1).
 #[must_use]
 pub fn tol(x: f64) -> f64 {
