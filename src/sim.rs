@@ -155,7 +155,7 @@ impl Simulation {
             // outputs once per communication step, after the last sub-step
             self.state.refresh_outputs(&self.model);
             if let Some(what) = self.state.outputs().first_non_finite() {
-                self.state.clone_from(&self.saved);
+                self.state.copy_values_from(&self.saved);
                 return Err(AdvanceError {
                     error: Failure::NonFinite(what),
                     last_good_time: self.state.time(),
@@ -194,11 +194,11 @@ impl Simulation {
         let n = needed.min(f64::from(bound)) as usize;
         // the roll-back copy (a failed `step` leaves the state untouched, but earlier sub-steps
         // and the lag must be undone too)
-        self.saved.clone_from(&self.state);
+        self.saved.copy_values_from(&self.state);
         let dt = span / needed;
         for _ in 0..n {
             if let Err(error) = step_state(&self.model, &mut self.state, dt) {
-                self.state.clone_from(&self.saved);
+                self.state.copy_values_from(&self.saved);
                 return Err(AdvanceError {
                     error: error.into(),
                     last_good_time: t0,

@@ -167,6 +167,27 @@ impl State {
         &self.v
     }
 
+    /// Makes this state equal to `src` in everything but the scratch workspaces (Newton's and
+    /// the projection's, which every step and refresh overwrite): the cheap copy a roll-back
+    /// needs. Reuses this state's allocations.
+    pub fn copy_values_from(&mut self, src: &State) {
+        self.t = src.t;
+        self.lag = src.lag;
+        self.q.clone_from(&src.q);
+        self.v.clone_from(&src.v);
+        self.v_lo.clone_from(&src.v_lo);
+        self.lam.clone_from(&src.lam);
+        self.angles.clone_from(&src.angles);
+        self.work = src.work;
+        self.hist.clone_from(&src.hist);
+        self.hprev = src.hprev;
+        self.memory = src.memory;
+        self.inputs.clone_from(&src.inputs);
+        self.damping.clone_from(&src.damping);
+        self.stiffness.clone_from(&src.stiffness);
+        self.outputs.clone_from(&src.outputs);
+    }
+
     /// Test-only: forgets the predictor's history and the iteration's memory, as after
     /// [`State::new`]; the next steps converge to the same solution (to the solver's
     /// tolerance) from a poorer start. Never use outside tests.
