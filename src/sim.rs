@@ -156,6 +156,7 @@ impl Simulation {
             self.state.refresh_outputs(&self.model);
             if let Some(what) = self.state.outputs().first_non_finite() {
                 self.state.copy_values_from(&self.saved);
+                self.state.refresh_outputs(&self.model);
                 return Err(AdvanceError {
                     error: Failure::NonFinite(what),
                     last_good_time: self.state.time(),

@@ -1,6 +1,6 @@
-//! `step` allocates nothing after set-up (style rule 1): a counting global allocator sees zero
-//! allocations across many steps of free, tree and loop models, order 2 and 4, with inputs,
-//! springs and dampers.
+//! `step` and `Simulation::advance` allocate nothing after set-up (style rule 1): a counting
+//! global allocator sees zero allocations across many steps of free, tree and loop models,
+//! order 2 and 4, with inputs, springs and dampers.
 
 mod common;
 use common::*;
@@ -75,4 +75,23 @@ fn step_does_not_allocate() {
         let n = count() - before;
         assert_eq!(n, 0, "{n} allocations in 50 steps");
     }
+}
+
+/// The FMU's and `simulate`'s path allocates nothing either: `Simulation::advance` with its
+/// roll-back copy, the check of the outputs, several sub-steps, a carried tiny step.
+#[test]
+fn simulation_advance_does_not_allocate() {
+    let mut def = double_pendulum();
+    def.joints[1].actuated = true;
+    let mut sim = triad::sim::Simulation::new(&def, settings(0.01, 2), 0.0).unwrap();
+    sim.state_mut().inputs_mut()[0] = 0.5;
+    sim.advance(0.01).unwrap();
+    sim.advance(0.03).unwrap();
+    let before = count();
+    for k in 0..50 {
+        let h = [0.01, 0.03, 1e-12][k % 3];
+        sim.advance(h).unwrap();
+    }
+    let n = count() - before;
+    assert_eq!(n, 0, "{n} allocations in 50 communication steps");
 }

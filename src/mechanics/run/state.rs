@@ -167,9 +167,10 @@ impl State {
         &self.v
     }
 
-    /// Makes this state equal to `src` in everything but the scratch workspaces (Newton's and
-    /// the projection's, which every step and refresh overwrite): the cheap copy a roll-back
-    /// needs. Reuses this state's allocations.
+    /// Makes this state equal to `src` in everything that determines its future (the snapshot's
+    /// contents), leaving out the scratch workspaces and the outputs (a function of the rest:
+    /// [`State::refresh_outputs`] recomputes them): the cheap copy a roll-back needs. Reuses this
+    /// state's allocations, allocates nothing.
     pub fn copy_values_from(&mut self, src: &State) {
         self.t = src.t;
         self.lag = src.lag;
@@ -185,7 +186,6 @@ impl State {
         self.inputs.clone_from(&src.inputs);
         self.damping.clone_from(&src.damping);
         self.stiffness.clone_from(&src.stiffness);
-        self.outputs.clone_from(&src.outputs);
     }
 
     /// Test-only: forgets the predictor's history and the iteration's memory, as after
