@@ -4,11 +4,13 @@
 use super::guard::{ffi_fn, non_null, slice, with_component, Component};
 use super::types::*;
 use crate::fmu::{FmuError, Op, Snapshot, Status};
+use std::collections::HashSet;
 
 /// The snapshot behind an FMU state pointer, if this instance handed it out and it is not freed.
-fn snapshot(comp: &Component, s: fmi2FMUstate) -> Result<&Snapshot, FmuError> {
+/// `states` is the component's registry; the snapshot is borrowed for as long as it is.
+fn snapshot(states: &HashSet<usize>, s: fmi2FMUstate) -> Result<&Snapshot, FmuError> {
     non_null!(s, "FMUstate");
-    if !comp.states.contains(&(s as usize)) {
+    if !states.contains(&(s as usize)) {
         return Err(FmuError::rejected(
             "FMUstate is not a live FMU state of this instance (freed, or from elsewhere)",
         ));
@@ -59,8 +61,10 @@ ffi_fn! {
         unsafe {
             with_component(c, "fmi2SetFMUstate", |comp| {
                 comp.instance.check(Op::FmuState, "fmi2SetFMUstate")?;
-                let snap = snapshot(comp, FMUstate)?.clone();
-                comp.instance.set_fmu_state(&snap)
+                // the registry and the instance are distinct fields: no copy of the state needed
+                let Component { instance, states, .. } = comp;
+                let snap = snapshot(states, FMUstate)?;
+                instance.set_fmu_state(snap)
             })
         }
     } ?= fmi2Fatal
@@ -77,7 +81,7 @@ ffi_fn! {
                 if FMUstate.is_null() || (*FMUstate).is_null() {
                     return Ok(Status::Ok);
                 }
-                snapshot(comp, *FMUstate)?;
+                snapshot(&comp.states, *FMUstate)?;
                 comp.states.remove(&(*FMUstate as usize));
                 drop(Box::from_raw((*FMUstate).cast::<Snapshot>()));
                 *FMUstate = std::ptr::null_mut();
@@ -95,7 +99,7 @@ ffi_fn! {
             with_component(c, "fmi2SerializedFMUstateSize", |comp| {
                 comp.instance.check(Op::FmuState, "fmi2SerializedFMUstateSize")?;
                 non_null!(size, "size");
-                *size = snapshot(comp, FMUstate)?.to_bytes().len();
+                *size = snapshot(&comp.states, FMUstate)?.to_bytes().len();
                 Ok(Status::Ok)
             })
         }
@@ -109,7 +113,7 @@ ffi_fn! {
         unsafe {
             with_component(c, "fmi2SerializeFMUstate", |comp| {
                 comp.instance.check(Op::FmuState, "fmi2SerializeFMUstate")?;
-                let bytes = snapshot(comp, FMUstate)?.to_bytes();
+                let bytes = snapshot(&comp.states, FMUstate)?.to_bytes();
                 if size < bytes.len() {
                     return Err(FmuError::rejected(format!("buffer of {size} bytes is too small for {} bytes", bytes.len())));
                 }

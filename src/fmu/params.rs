@@ -219,7 +219,8 @@ impl Instance {
             }
             _ => None,
         };
-        // a new stiffness changes the spring energy output at once: try it on a copy first
+        // a new stiffness shows in the spring energy output at once, not after a step: set it and
+        // refresh the outputs on a copy, which replaces the simulation only if they are finite
         let respring = self.mode == Mode::StepComplete
             && updates
                 .iter()
@@ -253,7 +254,6 @@ impl Instance {
         if rebuilt.is_some() {
             self.sim = rebuilt;
         }
-        let mut springs_changed = false;
         for (acc, value) in updates {
             match (acc, self.sim.as_mut()) {
                 (Accessor::Input(i), Some(sim)) => {
@@ -269,18 +269,7 @@ impl Instance {
                 (Accessor::Damping(j), Some(sim)) if self.mode == Mode::StepComplete => {
                     sim.state_mut().set_damping(j, value)
                 }
-                (Accessor::Stiffness(j), Some(sim)) if self.mode == Mode::StepComplete => {
-                    // already set on the checked copy; refreshing again is harmless
-                    sim.state_mut().set_stiffness(j, value);
-                    springs_changed = true;
-                }
                 _ => {}
-            }
-        }
-        // the spring energy is an output: show the new stiffness at once, not after a step
-        if springs_changed {
-            if let Some(sim) = self.sim.as_mut() {
-                sim.refresh_outputs();
             }
         }
         Ok(Status::Ok)

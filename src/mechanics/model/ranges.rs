@@ -43,7 +43,11 @@ fn show(v: f64) -> String {
     }
 }
 
-fn finite(v: f64) -> Result<(), String> {
+/// Any finite number (gravity components, initial values, position limits, inertia entries).
+///
+/// # Errors
+/// NaN or ±∞.
+pub fn any_finite(v: f64) -> Result<(), String> {
     if v.is_finite() {
         Ok(())
     } else {
@@ -51,20 +55,12 @@ fn finite(v: f64) -> Result<(), String> {
     }
 }
 
-/// Any finite number (gravity components, initial values, position limits, inertia entries).
-///
-/// # Errors
-/// NaN or ±∞.
-pub fn any_finite(v: f64) -> Result<(), String> {
-    finite(v)
-}
-
 /// `0 ≤ v < ∞`: masses, damping, stiffness, stop damping.
 ///
 /// # Errors
 /// Negative or non-finite.
 pub fn non_negative(v: f64) -> Result<(), String> {
-    finite(v)?;
+    any_finite(v)?;
     if v >= 0.0 {
         Ok(())
     } else {
@@ -77,7 +73,7 @@ pub fn non_negative(v: f64) -> Result<(), String> {
 /// # Errors
 /// Zero, negative or non-finite.
 pub fn positive(v: f64) -> Result<(), String> {
-    finite(v)?;
+    any_finite(v)?;
     if v > 0.0 {
         Ok(())
     } else {
