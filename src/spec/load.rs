@@ -136,6 +136,10 @@ const SOLVER: &[Field] = &[
     opt("order", Check::Value(is::<super::values::Order>)),
     opt("tolerance", NUM),
     opt("max_substeps", Check::Value(is::<u32>)),
+    opt("stages", Check::Value(is::<u8>)),
+    opt("rtol", NUM),
+    opt("atol", NUM),
+    opt("min_step", NUM),
 ];
 const ORIGIN: &[Field] = &[opt("xyz", VEC3), opt("rpy", VEC3)];
 const INITIAL: &[Field] = &[

@@ -190,6 +190,10 @@ pub(crate) fn build(spec: &Spec) -> (ModelDef, SolverSettings) {
         order: spec.solver.order,
         tolerance: spec.solver.tolerance,
         max_substeps: spec.solver.max_substeps,
+        stages: spec.solver.stages,
+        rtol: spec.solver.rtol,
+        atol: spec.solver.atol,
+        min_step: spec.solver.min_step,
         ..SolverSettings::default()
     };
     (def, settings)

@@ -91,6 +91,14 @@ pub struct SolverSpec {
     /// Most internal sub-steps one communication step may take (default 100 000): a step that
     /// needs more stops there (`fmi2Discard` with the progress made).
     pub max_substeps: u32,
+    /// Stages of the order-4 composition: 3 (triple jump, default) or 5 (Suzuki's).
+    pub stages: u8,
+    /// Relative tolerance of error-controlled internal steps; 0 (default): fixed steps.
+    pub rtol: f64,
+    /// Absolute tolerance of error-controlled internal steps (default 0).
+    pub atol: f64,
+    /// Floor of an error-controlled internal step, s (default 1e-8).
+    pub min_step: f64,
 }
 
 impl Default for SolverSpec {
@@ -101,6 +109,10 @@ impl Default for SolverSpec {
             order: s.order,
             tolerance: s.tolerance,
             max_substeps: s.max_substeps,
+            stages: s.stages,
+            rtol: s.rtol,
+            atol: s.atol,
+            min_step: s.min_step,
         }
     }
 }

@@ -82,6 +82,13 @@ fn top_level(spec: &Spec, report: &mut Report) {
             "solver.max_substeps",
             ranges::max_substeps(f64::from(s.max_substeps)).map(drop),
         ),
+        (
+            "solver.stages",
+            ranges::stages(f64::from(s.stages)).map(drop),
+        ),
+        ("solver.rtol", ranges::rtol(s.rtol)),
+        ("solver.atol", ranges::atol(s.atol)),
+        ("solver.min_step", ranges::min_step(s.min_step)),
     ];
     for (path, check) in checks {
         if let Err(e) = check {

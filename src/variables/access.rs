@@ -71,6 +71,10 @@ pub fn read_param(acc: Accessor, def: &ModelDef, settings: &SolverSettings) -> O
         Accessor::Tolerance => Some(settings.tolerance),
         Accessor::Order => Some(f64::from(settings.order)),
         Accessor::MaxSubsteps => Some(f64::from(settings.max_substeps)),
+        Accessor::Stages => Some(f64::from(settings.stages)),
+        Accessor::Rtol => Some(settings.rtol),
+        Accessor::Atol => Some(settings.atol),
+        Accessor::MinStep => Some(settings.min_step),
         _ => None,
     }
 }
@@ -192,6 +196,21 @@ pub fn write_param(
         Accessor::MaxSubsteps => {
             settings.max_substeps =
                 ranges::max_substeps(value).map_err(|e| format!("solver.max_substeps {e}"))?;
+        }
+        Accessor::Stages => {
+            settings.stages = ranges::stages(value).map_err(|e| format!("solver.stages {e}"))?;
+        }
+        Accessor::Rtol => {
+            named("solver.rtol", ranges::rtol(value))?;
+            settings.rtol = value;
+        }
+        Accessor::Atol => {
+            named("solver.atol", ranges::atol(value))?;
+            settings.atol = value;
+        }
+        Accessor::MinStep => {
+            named("solver.min_step", ranges::min_step(value))?;
+            settings.min_step = value;
         }
         _ => return Err("not a parameter".into()),
     }

@@ -71,7 +71,10 @@ impl Builder {
             Causality::Output => Initial::Calculated,
             Causality::Parameter => Initial::Exact,
         };
-        let ty = if matches!(accessor, Accessor::Order | Accessor::MaxSubsteps) {
+        let ty = if matches!(
+            accessor,
+            Accessor::Order | Accessor::MaxSubsteps | Accessor::Stages
+        ) {
             VarType::Integer
         } else {
             VarType::Real

@@ -179,7 +179,7 @@ pub(super) fn parameters(b: &mut Builder, def: &ModelDef, settings: &SolverSetti
         "solver.max_step".into(),
         settings.max_step,
         Some("s"),
-        "largest internal time step; a communication step takes ceil(H / max_step) equal sub-steps"
+        "largest internal time step; with solver.rtol = 0 a communication step takes ceil(H / max_step) equal sub-steps, with solver.rtol > 0 it is the ceiling of the error-controlled step"
             .into(),
         Accessor::MaxStep,
     );
@@ -203,5 +203,33 @@ pub(super) fn parameters(b: &mut Builder, def: &ModelDef, settings: &SolverSetti
         None,
         "most internal sub-steps in one fmi2DoStep: a step needing more stops there with fmi2Discard (fmi2LastSuccessfulTime says how far it got)".into(),
         Accessor::MaxSubsteps,
+    );
+    b.fixed(
+        "solver.stages".into(),
+        f64::from(settings.stages),
+        None,
+        "stages of the order-4 composition: 3 (triple jump) or 5 (Suzuki: about 1/64 of the error at the same step, 5/3 of the cost)".into(),
+        Accessor::Stages,
+    );
+    b.fixed(
+        "solver.rtol".into(),
+        settings.rtol,
+        Some("1"),
+        "relative tolerance of error-controlled internal steps (0: fixed steps of solver.max_step); every step is still an energy-momentum step".into(),
+        Accessor::Rtol,
+    );
+    b.fixed(
+        "solver.atol".into(),
+        settings.atol,
+        Some("1"),
+        "absolute tolerance of error-controlled internal steps, added to solver.rtol".into(),
+        Accessor::Atol,
+    );
+    b.fixed(
+        "solver.min_step".into(),
+        settings.min_step,
+        Some("s"),
+        "floor of an error-controlled internal step".into(),
+        Accessor::MinStep,
     );
 }

@@ -181,6 +181,14 @@ pub enum Accessor {
     Order,
     /// `solver.max_substeps` (Integer).
     MaxSubsteps,
+    /// `solver.stages` (Integer).
+    Stages,
+    /// `solver.rtol`.
+    Rtol,
+    /// `solver.atol`.
+    Atol,
+    /// `solver.min_step`.
+    MinStep,
 }
 
 /// One variable.

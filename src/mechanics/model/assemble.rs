@@ -83,6 +83,12 @@ impl Model {
                 settings.order
             )));
         }
+        if settings.stages != 3 && settings.stages != 5 {
+            return Err(ModelError::Invalid(format!(
+                "stages must be 3 or 5, got {}",
+                settings.stages
+            )));
+        }
         if !(settings.tolerance.is_finite() && settings.tolerance > 0.0)
             || settings.max_iterations == 0
         {

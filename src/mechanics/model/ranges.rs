@@ -15,7 +15,11 @@
 //! | `max_step` (s) | `[MAX_STEP_MIN, MAX_STEP_MAX]` |
 //! | `tolerance` (1) | `[TOLERANCE_MIN, TOLERANCE_MAX)` |
 //! | `order` | 2 or 4 |
+//! | `stages` | 3 or 5 |
 //! | `max_substeps` | `[1, MAX_SUBSTEPS_MAX]` |
+//! | `rtol` (1) | 0 (fixed steps) or `[RTOL_MIN, RTOL_MAX]` |
+//! | `atol` (1) | `[0, RTOL_MAX]` |
+//! | `min_step` (s) | `[MAX_STEP_MIN, MAX_STEP_MAX]` |
 
 use super::def::ModelDef;
 use crate::math::Mat3;
@@ -30,6 +34,10 @@ pub const MAX_STEP_MAX: f64 = 1e3;
 pub const TOLERANCE_MIN: f64 = 1e-14;
 /// Newton tolerances from here on are too loose to keep the invariants meaningful.
 pub const TOLERANCE_MAX: f64 = 1e-3;
+/// Smallest non-zero `solver.rtol`: tighter local errors are round-off.
+pub const RTOL_MIN: f64 = 1e-12;
+/// Largest `solver.rtol` and `solver.atol`: a looser tolerance controls nothing.
+pub const RTOL_MAX: f64 = 0.1;
 /// Largest `solver.max_substeps` (the largest `fmi2Integer`).
 pub const MAX_SUBSTEPS_MAX: f64 = 2_147_483_647.0;
 
@@ -121,6 +129,53 @@ pub fn order(v: f64) -> Result<u8, String> {
         4.0 => Ok(4),
         _ => Err(format!("must be 2 or 4 (got {})", show(v))),
     }
+}
+
+/// `solver.stages`: the stages of the order-4 composition, 3 (triple jump) or 5 (Suzuki's).
+///
+/// # Errors
+/// Any other value.
+pub fn stages(v: f64) -> Result<u8, String> {
+    match v {
+        3.0 => Ok(3),
+        5.0 => Ok(5),
+        _ => Err(format!("must be 3 or 5 (got {})", show(v))),
+    }
+}
+
+/// `solver.rtol`: 0 (fixed internal steps) or in `[RTOL_MIN, RTOL_MAX]` (error control).
+///
+/// # Errors
+/// Anything else.
+pub fn rtol(v: f64) -> Result<(), String> {
+    if v == 0.0 || (RTOL_MIN..=RTOL_MAX).contains(&v) {
+        Ok(())
+    } else {
+        Err(format!(
+            "must be 0 (fixed steps) or in [{RTOL_MIN:e}, {RTOL_MAX}] (got {})",
+            show(v)
+        ))
+    }
+}
+
+/// `solver.atol`: in `[0, RTOL_MAX]`.
+///
+/// # Errors
+/// Anything else.
+pub fn atol(v: f64) -> Result<(), String> {
+    if (0.0..=RTOL_MAX).contains(&v) {
+        Ok(())
+    } else {
+        Err(format!("must be in [0, {RTOL_MAX}] (got {})", show(v)))
+    }
+}
+
+/// `solver.min_step`, the floor of an error-controlled step: as `max_step`.
+///
+/// # Errors
+/// Outside `[MAX_STEP_MIN, MAX_STEP_MAX]`.
+pub fn min_step(v: f64) -> Result<(), String> {
+    max_step(v)
 }
 
 /// `solver.max_substeps`: a whole number in `[1, MAX_SUBSTEPS_MAX]`.

@@ -1,10 +1,17 @@
-//! One energy–momentum step (order 2) or its triple-jump composition (order 4).
+//! One energy–momentum step (order 2) or a symmetric composition of it (order 4).
 //!
 //! A stage of size `h` solves the scaled EM equations (see `newton`) from the predictor
 //! `φ + h v̄`, `dᵢ ← cay(h ω̄) dᵢ` (mean rates extrapolated from the previous stages', see
 //! `predictor`), `μ = h² λₙ/2`, then sets `v_{n+1} = (2/h)(q_{n+1} − qₙ) − vₙ`.
 //! Order 4 is `Φ_{γ₁h} ∘ Φ_{γ₂h} ∘ Φ_{γ₁h}` with `γ₁ = 1/(2 − 2^{1/3})`, `γ₂ = 1 − 2γ₁`
-//! (theory.md §4.8); every stage is itself an EM step, so the conservation laws hold exactly.
+//! (theory.md §4.8), or, with `stages = 5`, Suzuki's `Φ_{sh}² ∘ Φ_{(1−4s)h} ∘ Φ_{sh}²` with
+//! `s = 1/(4 − 4^{1/3})`: its error is about 1/64 of the triple jump's at the same step
+//! (measured on the heavy top, a free body and a 3-link chain; on `y' = iωy` the local errors
+//! are `9.3e-4 (ωh)⁵` against `6.6e-2 (ωh)⁵`), so the same accuracy costs about 5/(3·64^{1/4})
+//! ≈ 0.59 of the stages, and its backward stage is `−0.66 h` instead of `−1.70 h`. Every
+//! stage is itself an EM step, so the conservation laws hold exactly whatever the stages.
+//! (Sixth-order compositions, Kahan & Li's nine stages or the triple jump of triple jumps, give
+//! only fourth order with this scheme: measured, every model shows `e(h)/e(h/2) = 16`.)
 //! All work happens on workspace copies; the state is written only after every stage converged.
 // index loops over coupled fixed-size arrays read closer to the formulas than iterator chains
 #![allow(clippy::needless_range_loop)]
@@ -38,9 +45,34 @@ pub fn gamma1() -> f64 {
     1.0 / (2.0 - 2f64.cbrt())
 }
 
+/// Suzuki's coefficient `s = 1/(4 − 4^{1/3})`.
+#[must_use]
+pub fn suzuki() -> f64 {
+    1.0 / (4.0 - 4f64.cbrt())
+}
+
+/// The stage sizes of one step as fractions of `h` for `order` and `stages` (see the module
+/// docs), written into `out`; returns how many.
+#[must_use]
+pub fn stage_fractions(order: u8, stages: u8, out: &mut [f64; 5]) -> usize {
+    if order != 4 {
+        out[0] = 1.0;
+        return 1;
+    }
+    if stages == 5 {
+        let s = suzuki();
+        *out = [s, s, 1.0 - 4.0 * s, s, s];
+        5
+    } else {
+        let g1 = gamma1();
+        out[..3].copy_from_slice(&[g1, 1.0 - 2.0 * g1, g1]);
+        3
+    }
+}
+
 /// The stages of one step of size `h` on the workspace, from `ws.qn`, `ws.vn`, … (the state
 /// at the step start, copied in by the caller) to the end of the step in the same buffers:
-/// one stage at order 2, the triple jump `γ₁h, γ₂h, γ₁h` at order 4 (each stage extrapolates
+/// one stage at order 2, the composition's stages at order 4 (each stage extrapolates
 /// from its own predictor table). On error the workspace is left mid-step; the caller's state
 /// is untouched.
 ///
@@ -53,13 +85,11 @@ pub(crate) fn compose(
     h: f64,
     stats: &mut StepStats,
 ) -> Result<(), StepError> {
-    let g1 = gamma1();
-    let stages: &[f64] = if model.settings().order == 4 {
-        &[g1, 1.0 - 2.0 * g1, g1]
-    } else {
-        &[1.0]
-    };
-    let order4 = stages.len() > 1;
+    let settings = model.settings();
+    let mut fractions = [0.0; 5];
+    let count = stage_fractions(settings.order, settings.stages, &mut fractions);
+    let stages = &fractions[..count];
+    let order4 = count > 1;
     ws.loss.fill(0.0);
     // only dampers can give energy back: models without any skip the check
     let guard = order4

@@ -8,16 +8,17 @@ use crate::mechanics::model::runtime::Model;
 /// Stages of predictor history kept (mean rates and sizes).
 pub const HISTORY: usize = 6;
 
-/// Difference tables of the predictor: table 0 follows every stage, tables 1–3 the first,
-/// second and third stage of the order-4 composition (allocated for order-4 models only).
-pub const TABLES: usize = 4;
+/// Difference tables of the predictor: table 0 follows every stage, tables 1–5 the stages of
+/// the order-4 composition (3 or 5; allocated for order-4 models only).
+pub const TABLES: usize = 6;
 
 /// Length of the predictor history of `model` (`Work::hist`, `State::hist`): 6 numbers per
-/// body, difference and table; order-4 models keep [`TABLES`] tables, the others one.
+/// body, difference and table; order-4 models keep one table per stage besides table 0.
 #[must_use]
 pub fn history_len(model: &Model) -> usize {
-    let tables = if model.settings().order == 4 {
-        TABLES
+    let s = model.settings();
+    let tables = if s.order == 4 {
+        1 + usize::from(s.stages.max(3))
     } else {
         1
     };
