@@ -1,6 +1,12 @@
-//! One simulation run shared by `triad simulate` and the FMU: communication steps made of equal
+//! One simulation run shared by `triad simulate` and the FMU: communication steps made of
 //! internal sub-steps, with roll-back on failure. Both front ends call this, so their results are
 //! identical by construction.
+//!
+//! The sub-steps of a communication step are equal: `ceil(H / max_step)` of them with fixed
+//! steps (`solver.rtol = 0`), or, with error control, `ceil(r / h)` for the span `r` still to
+//! go and the controller's proposal `h` (recomputed after every step, see
+//! `mechanics::run::control`), so the last one ends exactly on the communication point and a
+//! steady proposal gives equal steps. Rejected attempts count towards `max_substeps`.
 //!
 //! Three guards keep every accepted step meaningful:
 //! - a communication step shorter than [`MIN_STEP_RATIO`]` × max_step` is not integrated (the
@@ -12,7 +18,10 @@
 //!   reporting the time reached ([`Failure::WorkBound`]);
 //! - a step whose outputs are not all finite is rolled back ([`Failure::NonFinite`]).
 
-use crate::mechanics::{step_state, Model, ModelDef, ModelError, SolverSettings, State, StepError};
+use crate::mechanics::{
+    controlled_step, step_state, Model, ModelDef, ModelError, SolverSettings, State, StepError,
+    Verdict,
+};
 use thiserror::Error;
 
 /// A communication step shorter than this fraction of `max_step` is carried into the next one
@@ -190,6 +199,9 @@ impl Simulation {
             self.state.set_time(t_end);
             return Ok(false);
         }
+        if settings.rtol > 0.0 {
+            return self.advance_controlled(t0, t_end, span);
+        }
         let needed = self.substeps(span);
         let bound = settings.max_substeps.max(1);
         let n = needed.min(f64::from(bound)) as usize;
@@ -216,6 +228,61 @@ impl Simulation {
                 last_good_time: reached,
             });
         }
+        self.state.set_time(t_end);
+        Ok(true)
+    }
+
+    /// The error-controlled communication step (module docs): `span` (the step and the lag)
+    /// from the bodies' time to `t_end`.
+    fn advance_controlled(&mut self, t0: f64, t_end: f64, span: f64) -> Result<bool, AdvanceError> {
+        let bound = self.model.settings().max_substeps.max(1);
+        self.saved.copy_values_from(&self.state);
+        let mut remaining = span;
+        let mut attempts: u32 = 0;
+        let mut done = 0.0;
+        while remaining > 0.0 {
+            if attempts >= bound {
+                let reached = (t0 - self.saved.lag()) + done;
+                self.state.set_lag(0.0);
+                self.state.set_time(reached);
+                return Err(AdvanceError {
+                    error: Failure::WorkBound {
+                        needed: f64::from(bound) + 1.0,
+                        bound,
+                    },
+                    last_good_time: reached,
+                });
+            }
+            attempts += 1;
+            let proposal = self.state.control().proposal(&self.model);
+            let n = (remaining / proposal * (1.0 - 1e-9)).ceil().max(1.0);
+            let h = if n <= 1.0 { remaining } else { remaining / n };
+            let verdict = controlled_step(&self.model, &mut self.state, h);
+            match verdict {
+                Ok(Verdict::Accept) => {
+                    done += h;
+                    remaining = if n <= 1.0 { 0.0 } else { remaining - h };
+                }
+                Ok(Verdict::Reject) => {}
+                Err(error) => {
+                    // a failed step is retried shorter, down to the floor
+                    let floor = {
+                        let s = self.model.settings();
+                        s.min_step.min(s.max_step)
+                    };
+                    if h > floor * (1.0 + 1e-12) {
+                        self.state.ctrl.shrink_after_failure(&self.model, h);
+                        continue;
+                    }
+                    self.state.copy_values_from(&self.saved);
+                    return Err(AdvanceError {
+                        error: error.into(),
+                        last_good_time: t0,
+                    });
+                }
+            }
+        }
+        self.state.set_lag(0.0);
         self.state.set_time(t_end);
         Ok(true)
     }

@@ -10,6 +10,7 @@ use crate::mechanics::step::error::StepError;
 use crate::mechanics::step::stage::{compose, StepStats};
 use crate::mechanics::step::work::Held;
 
+use super::control::Verdict;
 use super::state::State;
 
 /// Advances `state` by `h` seconds with the model's order (inputs held constant) and refreshes
@@ -32,6 +33,32 @@ pub fn step(model: &Model, state: &mut State, h: f64) -> Result<StepStats, StepE
 /// # Errors
 /// [`StepError`] when Newton fails, a value is not finite, or `h` is not positive.
 pub fn step_state(model: &Model, state: &mut State, h: f64) -> Result<StepStats, StepError> {
+    let stats = trial(model, state, h)?;
+    commit(state, h);
+    Ok(stats)
+}
+
+/// One error-controlled attempt of size `h` (`solver.rtol > 0`, see `control`): the step is
+/// taken on the workspace and judged by the local error estimate; an accepted step is
+/// committed like [`step_state`] (outputs left as they were), a rejected one leaves the state
+/// as it was but for the controller's new proposal (`state.control().proposal(model)`).
+///
+/// # Errors
+/// As [`step_state`]; the state is then unchanged.
+pub fn controlled_step(model: &Model, state: &mut State, h: f64) -> Result<Verdict, StepError> {
+    trial(model, state, h)?;
+    let verdict = state.ctrl.judge(model, &state.q, &state.ws, h);
+    if verdict == Verdict::Accept {
+        commit(state, h);
+        // the commit swapped the step's start into the workspace
+        state.ctrl.record(&state.ws.qn, h);
+    }
+    Ok(verdict)
+}
+
+/// The step of size `h` from the state into its workspace (`ws.qn`, `ws.vn`, … hold the
+/// result); the state itself is untouched.
+fn trial(model: &Model, state: &mut State, h: f64) -> Result<StepStats, StepError> {
     if !(h.is_finite() && h > 0.0) {
         return Err(StepError::BadStep(h));
     }
@@ -63,6 +90,12 @@ pub fn step_state(model: &Model, state: &mut State, h: f64) -> Result<StepStats,
     };
     let mut stats = StepStats::default();
     compose(model, ws, &held, h, &mut stats)?;
+    Ok(stats)
+}
+
+/// Makes the workspace's step (from [`trial`]) the state.
+fn commit(state: &mut State, h: f64) {
+    let ws = &mut state.ws;
     // commit by swapping buffers of equal length (the workspace's copies are overwritten at
     // the start of the next step)
     std::mem::swap(&mut state.q, &mut ws.qn);
@@ -75,5 +108,4 @@ pub fn step_state(model: &Model, state: &mut State, h: f64) -> Result<StepStats,
     state.hprev = ws.hprev;
     state.memory = ws.memory;
     state.t += h;
-    Ok(stats)
 }

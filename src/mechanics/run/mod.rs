@@ -6,5 +6,6 @@
 //! Uses: `step`, `model`, `linalg` and `crate::math`.
 
 pub(crate) mod advance;
+pub(crate) mod control;
 pub(crate) mod outputs;
 pub(crate) mod state;

@@ -1,6 +1,7 @@
 //! The mutable state: time, coordinates, velocities, inputs, tunable parameters, outputs and the
 //! preallocated Newton workspace.
 
+use super::control::Control;
 use super::outputs::Outputs;
 use crate::mechanics::model::projection::{project_velocities, ProjWork};
 use crate::mechanics::model::runtime::Model;
@@ -34,6 +35,8 @@ pub struct State {
     pub(crate) hprev: [[f64; HISTORY]; TABLES],
     /// The solver's memory of the last stages.
     pub(crate) memory: Memory,
+    /// The step-size controller's memory (error-controlled runs).
+    pub(crate) ctrl: Control,
     pub(crate) inputs: Vec<f64>,
     pub(crate) damping: Vec<f64>,
     pub(crate) stiffness: Vec<f64>,
@@ -61,6 +64,7 @@ impl State {
             hist: vec![0.0; history_len(model)],
             hprev: [[0.0; HISTORY]; TABLES],
             memory: Memory::default(),
+            ctrl: Control::new(model),
             inputs: vec![0.0; model.inputs().len()],
             damping: def.joints.iter().map(|j| j.damping).collect(),
             stiffness: def.joints.iter().map(|j| j.stiffness).collect(),
@@ -90,6 +94,12 @@ impl State {
             self.work,
             &mut self.outputs,
         );
+    }
+
+    /// The step-size controller's memory (used when `solver.rtol > 0`).
+    #[must_use]
+    pub fn control(&self) -> &Control {
+        &self.ctrl
     }
 
     /// Current time, s.
@@ -183,6 +193,7 @@ impl State {
         self.hist.clone_from(&src.hist);
         self.hprev = src.hprev;
         self.memory = src.memory;
+        self.ctrl.copy_from(&src.ctrl);
         self.inputs.clone_from(&src.inputs);
         self.damping.clone_from(&src.damping);
         self.stiffness.clone_from(&src.stiffness);
@@ -200,7 +211,7 @@ impl State {
 
     /// Every number that determines the future of this state (time, q, v, multipliers used as
     /// the Newton start, inputs, tunable parameters, accumulated work, unwrapping memory), flat:
-    /// `[t, lag, q.., v.., v_lo.., λ/2.., angles.., work, hist.., h_prev.., memory (3), inputs.., damping.., stiffness..]`.
+    /// `[t, lag, q.., v.., v_lo.., λ/2.., angles.., work, hist.., h_prev.., memory (3), inputs.., damping.., stiffness.., step control..]`.
     #[must_use]
     pub fn snapshot(&self) -> Vec<f64> {
         let mut out = Vec::with_capacity(self.snapshot_len());
@@ -218,6 +229,7 @@ impl State {
         out.extend_from_slice(&self.inputs);
         out.extend_from_slice(&self.damping);
         out.extend_from_slice(&self.stiffness);
+        self.ctrl.to_f64(&mut out);
         out
     }
 
@@ -232,12 +244,14 @@ impl State {
             + self.inputs.len()
             + self.damping.len()
             + self.stiffness.len()
+            + self.ctrl.snapshot_len()
     }
 
     /// Restores a [`State::snapshot`] taken from a state of the same model; recomputes outputs.
     ///
     /// # Errors
-    /// A message if the length does not match the model.
+    /// A message if the length does not match the model or the step-control memory is
+    /// invalid (the state is then partly overwritten: restore into a scratch state).
     pub fn restore(&mut self, model: &Model, data: &[f64]) -> Result<(), String> {
         if data.len() != self.snapshot_len() {
             return Err(format!(
@@ -268,6 +282,7 @@ impl State {
         take(&mut self.inputs);
         take(&mut self.damping);
         take(&mut self.stiffness);
+        self.ctrl.from_f64(&data[at..])?;
         self.t = t[0];
         self.lag = t[1];
         self.work = w[0];
