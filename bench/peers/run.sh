@@ -23,6 +23,20 @@ cd "$WORK/harness"
 PY="$VENV/bin/python"
 ENGINE="$PY $ROOT/bench/peers/triad_engine.py --model {model} --h {h} --t-end {t_end} --dt-out {dt_out} --out {out} --method {method}"
 OUT="${TRIAD_PEERS_OUT:-$WORK/results}"
+# every engine on a finer grid of fixed steps than the harness's default (so that "the cheapest
+# run reaching an error" is not decided by a coarse grid)
+H="${TRIAD_PEERS_H:-1e-4,2e-4,5e-4,1e-3,2e-3,5e-3,1e-2,2e-2,5e-2}"
 "$PY" bench.py --external triad="$ENGINE --variant native" --external triad-fmu="$ENGINE --variant fmu" \
-  --external-methods EM2,EM4 --out "$OUT" "$@"
+  --external-methods EM2,EM4,EM4s5 --h "$H" --out "$OUT" "$@"
+# triad's tolerance sweep: error-controlled steps, ceiling and communication step 0.1 s
+"$PY" bench.py --engines '' --external triad="$ENGINE --variant native" \
+  --external-methods EMa2-1e-3,EMa2-1e-4,EMa2-1e-5,EMa2-1e-6,EMa4-1e-3,EMa4-1e-4,EMa4-1e-5,EMa4-1e-6,EMa4-1e-7,EMa4-1e-8,EMa4-1e-9 \
+  --h 0.1 --no-scaling --out "$OUT/adaptive" "$@"
+"$PY" - "$OUT" <<'PY'
+import json, os, sys
+out = sys.argv[1]
+acc = json.load(open(os.path.join(out, "accuracy.json")))
+acc += json.load(open(os.path.join(out, "adaptive", "accuracy.json")))
+json.dump(acc, open(os.path.join(out, "accuracy.json"), "w"), indent=1)
+PY
 "$PY" report.py --res "$OUT" --png-dir "$OUT"

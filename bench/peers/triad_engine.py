@@ -1,7 +1,11 @@
 #!/usr/bin/env python3
 """External engine for the peers harness (`../shared/peers/README.md`, CSV contract).
 
-  triad_engine.py --variant native|fmu --model M.json --h H --t-end T --dt-out D --out OUT.csv --method EM2|EM4
+  triad_engine.py --variant native|fmu --model M.json --h H --t-end T --dt-out D --out OUT.csv --method M
+
+Methods: EM2, EM4 (triple jump), EM4s5 (Suzuki's five stages) with fixed steps h; EMa2-<rtol>,
+EMa4-<rtol> (five stages) with error-controlled steps (solver.rtol), h their ceiling and the
+communication step.
 
 Both variants first turn the neutral model into a triad spec (`to_spec.py`).
 * native: runs the in-process `Simulation` (`target/release/examples/peers_native`), which times
@@ -176,13 +180,20 @@ def main():
     ap.add_argument("--out", required=True)
     ap.add_argument("--method", default="EM2")
     a = ap.parse_args()
-    order = 4 if a.method.upper().endswith("4") else 2
+    # EM2, EM4 (triple jump), EM4s5 (Suzuki's five stages): fixed steps h;
+    # EMa2-<rtol>, EMa4-<rtol>: error-controlled steps (order 4 with five stages), h the ceiling
+    meth = a.method.upper()
+    rtol = float(a.method.split("-", 1)[1]) if meth.startswith("EMA") else 0.0
+    order = 4 if meth.startswith(("EM4", "EMA4")) else 2
+    stages = 5 if meth == "EM4S5" or (rtol > 0 and order == 4) else 3
     with open(a.model) as f:
         model = json.load(f)
     with tempfile.TemporaryDirectory() as d:
         spec_path = os.path.join(d, "spec.json")
         with open(spec_path, "w") as f:
-            json.dump(to_spec.convert(model, a.h, order, a.t_end, a.dt_out, pd_internal=a.variant == "native"), f)
+            spec = to_spec.convert(model, a.h, order, a.t_end, a.dt_out, pd_internal=a.variant == "native")
+            spec["solver"].update({"stages": stages, "rtol": rtol})
+            json.dump(spec, f)
         if a.variant == "native":
             r = subprocess.run([NATIVE, "--pd", "internal", "--spec", spec_path, "--model", a.model, "--h", repr(a.h),
                                 "--t-end", repr(a.t_end), "--dt-out", repr(a.dt_out), "--out", a.out],
