@@ -119,7 +119,12 @@ fn error_against(def: &ModelDef, s: SolverSettings, reference: &[Vec<f64>], h: f
     for (k, r) in reference.iter().enumerate() {
         sim.advance((k + 1) as f64 * h - sim.time()).unwrap();
         let q = sim.state().coordinates();
-        worst = worst.max(q.iter().zip(r).map(|(a, b)| (a - b).abs()).fold(0.0, f64::max));
+        worst = worst.max(
+            q.iter()
+                .zip(r)
+                .map(|(a, b)| (a - b).abs())
+                .fold(0.0, f64::max),
+        );
     }
     worst
 }
@@ -149,8 +154,22 @@ fn reference(def: &ModelDef, h: f64, t_end: f64) -> Vec<Vec<f64>> {
 fn error_is_proportional_to_tolerance() {
     let h = 0.1;
     for (name, def, order, rtols, t_end, bound) in [
-        ("heavy top", heavy_top(), 4, &[1e-3, 1e-4, 1e-5, 1e-6, 1e-7][..], 2.0, 10.0),
-        ("double pendulum", double_pendulum(), 2, &[1e-3, 1e-4, 1e-5, 1e-6][..], 2.0, 100.0),
+        (
+            "heavy top",
+            heavy_top(),
+            4,
+            &[1e-3, 1e-4, 1e-5, 1e-6, 1e-7][..],
+            2.0,
+            10.0,
+        ),
+        (
+            "double pendulum",
+            double_pendulum(),
+            2,
+            &[1e-3, 1e-4, 1e-5, 1e-6][..],
+            2.0,
+            100.0,
+        ),
     ] {
         let r = reference(&def, h, t_end);
         let errs: Vec<f64> = rtols
@@ -159,7 +178,10 @@ fn error_is_proportional_to_tolerance() {
             .collect();
         eprintln!("{name}: rtol {rtols:?} error {errs:?}");
         for (w, &t) in errs.iter().zip(rtols) {
-            assert!(*w < bound * t && *w > t / 1000.0, "{name} rtol {t:e}: error {w:e}");
+            assert!(
+                *w < bound * t && *w > t / 1000.0,
+                "{name} rtol {t:e}: error {w:e}"
+            );
         }
         for pair in errs.windows(2) {
             assert!(pair[1] < pair[0] / 3.0, "{name}: {errs:?}");
@@ -188,6 +210,10 @@ fn restored_state_continues_bit_identically() {
         assert_eq!(a.state().snapshot(), b.state().snapshot(), "at {t}");
     }
     assert!(a.state().control().floor_steps() == 0);
+    // the memory carried information: a fresh controller would start elsewhere
+    let fresh = Simulation::new(&def, s, 0.0).unwrap();
+    let proposal = |x: &Simulation| x.state().control().proposal(x.model());
+    assert!(proposal(&a) > 10.0 * proposal(&fresh));
 }
 
 /// Fixed steps are untouched by the new settings: rtol = 0 gives the same bits as before

@@ -112,6 +112,10 @@ fn expected(spec: &Spec) -> Vec<(String, &'static str)> {
             "solver.tolerance".into(),
             "solver.order".into(),
             "solver.max_substeps".into(),
+            "solver.stages".into(),
+            "solver.rtol".into(),
+            "solver.atol".into(),
+            "solver.min_step".into(),
         ],
         "parameter",
     );

@@ -134,3 +134,48 @@ fn corrupt_or_foreign_states_are_rejected_and_change_nothing() {
     assert_eq!(f.serialize(), before);
     assert_eq!(f.step(3.0 * H, H), fmi2OK);
 }
+
+/// Under error-controlled steps (solver.rtol, solver.max_step as the ceiling, set before
+/// initialisation; communication steps of 0.1 s, so each holds several internal steps of the
+/// controller's choosing) a state serialised mid-run and deserialised into a fresh instance
+/// continues bit for bit: the controller's proposal and samples travel with the state (without
+/// them the controller restarts from a short step: `tests/adaptive.rs`).
+#[test]
+fn adaptive_state_travels_with_the_controller_memory() {
+    let m = TestModel::pendulum();
+    let (rtol, ms) = (m.vr("solver.rtol"), m.vr("solver.max_step"));
+    let outs = m.vrs(Causality::Output);
+    let start = |f: &Fmu| {
+        assert_eq!(f.set_real(&[rtol, ms], &[1e-6, 0.1]), fmi2OK);
+        assert_eq!(f.setup(0.0), fmi2OK);
+        assert_eq!(
+            unsafe { triad::ffi::common::fmi2EnterInitializationMode(f.c) },
+            fmi2OK
+        );
+        assert_eq!(
+            unsafe { triad::ffi::common::fmi2ExitInitializationMode(f.c) },
+            fmi2OK
+        );
+    };
+    let run = |f: &Fmu, from: usize, to: usize| -> Vec<u64> {
+        let mut trace = Vec::new();
+        for n in from..to {
+            assert_eq!(f.step(n as f64 * 0.1, 0.1), fmi2OK);
+            trace.extend(f.get_real(&outs).1.iter().map(|x| x.to_bits()));
+        }
+        trace
+    };
+    let a = Fmu::new(&m);
+    start(&a);
+    let want = run(&a, 0, 20);
+    let b = Fmu::new(&m);
+    start(&b);
+    let mut got = run(&b, 0, 7);
+    let bytes = b.serialize();
+    drop(b);
+    let c = Fmu::new(&m);
+    assert_eq!(c.deserialize(&bytes), fmi2OK, "{:?}", c.messages());
+    assert_eq!(c.get_real(&[rtol]).1, vec![1e-6]);
+    got.extend(run(&c, 7, 20));
+    assert_eq!(got, want);
+}

@@ -32,6 +32,13 @@ pub struct SimulateArgs {
     /// Largest internal step, s (overrides solver.max_step).
     #[arg(long, value_name = "S")]
     pub max_step: Option<f64>,
+    /// Error-controlled internal steps with this relative tolerance (overrides solver.rtol;
+    /// 0: fixed steps). --max-step is then the ceiling of the step.
+    #[arg(long, value_name = "RTOL")]
+    pub rtol: Option<f64>,
+    /// Absolute tolerance of error-controlled steps (overrides solver.atol).
+    #[arg(long, value_name = "ATOL")]
+    pub atol: Option<f64>,
     /// Integrator order (overrides solver.order).
     #[arg(long, value_parser = ["2", "4"])]
     pub order: Option<String>,
@@ -113,6 +120,14 @@ pub fn run(args: &SimulateArgs) -> Result<(), CliError> {
     if let Some(s) = args.max_step {
         triad::mechanics::ranges::max_step(s).map_err(|e| format!("--max-step {e}"))?;
         settings.max_step = s;
+    }
+    if let Some(r) = args.rtol {
+        triad::mechanics::ranges::rtol(r).map_err(|e| format!("--rtol {e}"))?;
+        settings.rtol = r;
+    }
+    if let Some(a) = args.atol {
+        triad::mechanics::ranges::atol(a).map_err(|e| format!("--atol {e}"))?;
+        settings.atol = a;
     }
     if let Some(o) = &args.order {
         settings.order = if o == "4" { 4 } else { 2 };
