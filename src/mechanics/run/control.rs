@@ -155,7 +155,7 @@ impl Control {
                 "step control: sample count {count} is out of range"
             ));
         }
-        if !(floor.fract() == 0.0 && floor >= 0.0 && floor < 9e15) {
+        if !(floor.fract() == 0.0 && (0.0..9e15).contains(&floor)) {
             return Err(format!("step control: floor count {floor} is out of range"));
         }
         let rest = &data[3..];
