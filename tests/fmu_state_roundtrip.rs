@@ -78,17 +78,7 @@ fn serialize_free_deserialize_in_a_fresh_instance() {
 fn parameters_set_before_initialisation_travel_with_the_state() {
     let m = TestModel::pendulum();
     let ms = m.vr("solver.max_step");
-    let a = Fmu::new(&m);
-    assert_eq!(a.set_real(&[ms], &[0.0025]), fmi2OK);
-    assert_eq!(a.setup(0.0), fmi2OK);
-    assert_eq!(
-        unsafe { triad::ffi::common::fmi2EnterInitializationMode(a.c) },
-        fmi2OK
-    );
-    assert_eq!(
-        unsafe { triad::ffi::common::fmi2ExitInitializationMode(a.c) },
-        fmi2OK
-    );
+    let a = Fmu::initialised_with(&m, &[ms], &[0.0025]);
     drive(&a, &m, 0, 3);
     let bytes = a.serialize();
     let b = Fmu::new(&m);
@@ -145,18 +135,6 @@ fn adaptive_state_travels_with_the_controller_memory() {
     let m = TestModel::pendulum();
     let (rtol, ms) = (m.vr("solver.rtol"), m.vr("solver.max_step"));
     let outs = m.vrs(Causality::Output);
-    let start = |f: &Fmu| {
-        assert_eq!(f.set_real(&[rtol, ms], &[1e-6, 0.1]), fmi2OK);
-        assert_eq!(f.setup(0.0), fmi2OK);
-        assert_eq!(
-            unsafe { triad::ffi::common::fmi2EnterInitializationMode(f.c) },
-            fmi2OK
-        );
-        assert_eq!(
-            unsafe { triad::ffi::common::fmi2ExitInitializationMode(f.c) },
-            fmi2OK
-        );
-    };
     let run = |f: &Fmu, from: usize, to: usize| -> Vec<u64> {
         let mut trace = Vec::new();
         for n in from..to {
@@ -165,11 +143,9 @@ fn adaptive_state_travels_with_the_controller_memory() {
         }
         trace
     };
-    let a = Fmu::new(&m);
-    start(&a);
+    let a = Fmu::initialised_with(&m, &[rtol, ms], &[1e-6, 0.1]);
     let want = run(&a, 0, 20);
-    let b = Fmu::new(&m);
-    start(&b);
+    let b = Fmu::initialised_with(&m, &[rtol, ms], &[1e-6, 0.1]);
     let mut got = run(&b, 0, 7);
     let bytes = b.serialize();
     drop(b);

@@ -243,6 +243,16 @@ impl Fmu {
         f
     }
 
+    /// An instance with the Real parameters `vrs` set to `values` before initialisation.
+    pub fn initialised_with(m: &TestModel, vrs: &[fmi2ValueReference], values: &[f64]) -> Self {
+        let f = Self::new(m);
+        assert_eq!(f.set_real(vrs, values), fmi2OK);
+        assert_eq!(f.setup(0.0), fmi2OK);
+        assert_eq!(unsafe { fmi2EnterInitializationMode(f.c) }, fmi2OK);
+        assert_eq!(unsafe { fmi2ExitInitializationMode(f.c) }, fmi2OK);
+        f
+    }
+
     pub fn setup(&self, start: f64) -> fmi2Status {
         unsafe { fmi2SetupExperiment(self.c, fmi2False, 0.0, start, fmi2False, 0.0) }
     }
