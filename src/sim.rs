@@ -19,8 +19,8 @@
 //! - a step whose outputs are not all finite is rolled back ([`Failure::NonFinite`]).
 
 use crate::mechanics::{
-    controlled_step, step_state, Model, ModelDef, ModelError, SolverSettings, State, StepError,
-    Verdict,
+    above_floor, controlled_step, step_state, Model, ModelDef, ModelError, SolverSettings, State,
+    StepError, Verdict,
 };
 use thiserror::Error;
 
@@ -266,11 +266,7 @@ impl Simulation {
                 Ok(Verdict::Reject) => {}
                 Err(error) => {
                     // a failed step is retried shorter, down to the floor
-                    let floor = {
-                        let s = self.model.settings();
-                        s.min_step.min(s.max_step)
-                    };
-                    if h > floor * (1.0 + 1e-12) {
+                    if above_floor(&self.model, h) {
                         self.state.ctrl.shrink_after_failure(&self.model, h);
                         continue;
                     }

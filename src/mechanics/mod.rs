@@ -37,7 +37,7 @@ pub use model::error::ModelError;
 pub use model::runtime::{InputSlot, Model};
 pub use model::{body, constraint, def, joint, kinematics, loops, ranges};
 pub use run::advance::{controlled_step, step, step_state};
-pub use run::control::{Control, Verdict};
+pub use run::control::{above_floor, Control, Verdict};
 pub use run::outputs::{BodyOutput, JointOutput, Outputs};
 pub use run::state::State;
 pub use step::error::StepError;

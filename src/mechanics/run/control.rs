@@ -84,7 +84,7 @@ pub struct Control {
 
 impl Control {
     /// Makes this memory equal to `src`'s (the scratch aside), reusing its allocations.
-    pub fn copy_from(&mut self, src: &Control) {
+    pub(crate) fn copy_from(&mut self, src: &Control) {
         self.h_next = src.h_next;
         self.count = src.count;
         self.tmid = src.tmid;
@@ -110,10 +110,15 @@ pub enum Verdict {
 }
 
 impl Control {
-    /// An empty memory for `model` (no samples, no proposal).
+    /// An empty memory for `model` (no samples, no proposal); the samples are allocated only
+    /// when `solver.rtol > 0`, so a fixed-step run's roll-back copy and snapshot carry none.
     #[must_use]
     pub fn new(model: &Model) -> Self {
-        let n = 12 * model.bodies.len();
+        let n = if model.settings().rtol > 0.0 {
+            12 * model.bodies.len()
+        } else {
+            0
+        };
         Self {
             h_next: 0.0,
             count: 0,
@@ -123,14 +128,14 @@ impl Control {
         }
     }
 
-    /// Numbers in [`Control::to_f64`].
+    /// Numbers in [`Control::write_f64`].
     #[must_use]
-    pub fn snapshot_len(&self) -> usize {
+    pub(crate) fn snapshot_len(&self) -> usize {
         3 + SAMPLES + self.acc.len()
     }
 
     /// The memory as numbers: `[h_next, count, floor_steps, tmid.., acc..]`.
-    pub fn to_f64(&self, out: &mut Vec<f64>) {
+    pub(crate) fn write_f64(&self, out: &mut Vec<f64>) {
         out.push(self.h_next);
         out.push(self.count as f64);
         out.push(self.floor_steps as f64);
@@ -138,11 +143,11 @@ impl Control {
         out.extend_from_slice(&self.acc);
     }
 
-    /// Reads [`Control::to_f64`] back.
+    /// Reads [`Control::write_f64`] back.
     ///
     /// # Errors
     /// A wrong length, a count out of range, or a non-finite or out-of-range value.
-    pub fn from_f64(&mut self, data: &[f64]) -> Result<(), String> {
+    pub(crate) fn read_f64(&mut self, data: &[f64]) -> Result<(), String> {
         if data.len() != self.snapshot_len() {
             return Err("step control memory has the wrong length".into());
         }
@@ -206,8 +211,7 @@ impl Control {
             // the differences are mostly the coordinates' noise: no ground to grow the step
             fac = fac.min(1.0);
         }
-        let floor = s.min_step.min(s.max_step);
-        if e > 1.0 && h > floor * (1.0 + 1e-12) {
+        if e > 1.0 && above_floor(model, h) {
             self.h_next = clamp_step(model, h * fac.min(SAFETY));
             return Verdict::Reject;
         }
@@ -229,7 +233,7 @@ impl Control {
     }
 
     /// After a step of size `h` failed (Newton did not converge), proposes a quarter of it.
-    pub fn shrink_after_failure(&mut self, model: &Model, h: f64) {
+    pub(crate) fn shrink_after_failure(&mut self, model: &Model, h: f64) {
         self.h_next = clamp_step(model, 0.25 * h);
     }
 
@@ -254,7 +258,6 @@ impl Control {
     fn error(&self, model: &Model, q1: &[f64], q0: &[f64], h: f64, needed: usize) -> (f64, f64) {
         let s = model.settings();
         let n = q0.len();
-        let q = q1;
         let lc = model.lc;
         let (c, p) = match (s.order, s.stages) {
             (4, 5) => (C4_SUZUKI * 120.0, 4),
@@ -284,7 +287,7 @@ impl Control {
         let mut worst: f64 = 0.0;
         let mut noisy: f64 = 0.0;
         for b in 0..n / 12 {
-            let phi = (q[12 * b].powi(2) + q[12 * b + 1].powi(2) + q[12 * b + 2].powi(2)).sqrt();
+            let phi = (q1[12 * b].powi(2) + q1[12 * b + 1].powi(2) + q1[12 * b + 2].powi(2)).sqrt();
             let tol = s.atol + s.rtol * (phi / lc).max(1.0);
             let mut eb: f64 = 0.0;
             for i in 0..12 {
@@ -314,8 +317,19 @@ impl Control {
     }
 }
 
-/// `h` within `[min_step, max_step]` (the floor never above the ceiling).
-fn clamp_step(model: &Model, h: f64) -> f64 {
+/// The floor of the step, s: `min_step`, never above the ceiling `max_step`.
+fn step_floor(model: &Model) -> f64 {
     let s = model.settings();
-    h.min(s.max_step).max(s.min_step.min(s.max_step))
+    s.min_step.min(s.max_step)
+}
+
+/// Whether a step of size `h` may still be shortened (it is above the floor).
+#[must_use]
+pub fn above_floor(model: &Model, h: f64) -> bool {
+    h > step_floor(model) * (1.0 + 1e-12)
+}
+
+/// `h` within `[floor, max_step]`.
+fn clamp_step(model: &Model, h: f64) -> f64 {
+    h.min(model.settings().max_step).max(step_floor(model))
 }

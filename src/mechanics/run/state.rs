@@ -229,7 +229,7 @@ impl State {
         out.extend_from_slice(&self.inputs);
         out.extend_from_slice(&self.damping);
         out.extend_from_slice(&self.stiffness);
-        self.ctrl.to_f64(&mut out);
+        self.ctrl.write_f64(&mut out);
         out
     }
 
@@ -282,7 +282,7 @@ impl State {
         take(&mut self.inputs);
         take(&mut self.damping);
         take(&mut self.stiffness);
-        self.ctrl.from_f64(&data[at..])?;
+        self.ctrl.read_f64(&data[at..])?;
         self.t = t[0];
         self.lag = t[1];
         self.work = w[0];
