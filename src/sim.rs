@@ -6,7 +6,9 @@
 //! steps (`solver.rtol = 0`), or, with error control, `ceil(r / h)` for the span `r` still to
 //! go and the controller's proposal `h` (recomputed after every step, see
 //! `mechanics::run::control`), so the last one ends exactly on the communication point and a
-//! steady proposal gives equal steps. Rejected attempts count towards `max_substeps`.
+//! steady proposal gives equal steps. A step that would cross a joint limit (enter or leave a
+//! stop contact) is retried to end on the crossing (`mechanics::run::events`), and the steps
+//! after it again share the span left equally. Rejected attempts count towards `max_substeps`.
 //!
 //! Three guards keep every accepted step meaningful:
 //! - a communication step shorter than [`MIN_STEP_RATIO`]` × max_step` is not integrated (the
@@ -240,6 +242,8 @@ impl Simulation {
         let mut remaining = span;
         let mut attempts: u32 = 0;
         let mut done = 0.0;
+        // a step that must end on a joint-stop crossing (`Verdict::Land`)
+        let mut landing: Option<f64> = None;
         while remaining > 0.0 {
             if attempts >= bound {
                 let reached = (t0 - self.saved.lag()) + done;
@@ -254,16 +258,27 @@ impl Simulation {
                 });
             }
             attempts += 1;
-            let proposal = self.state.control().proposal(&self.model);
-            let n = (remaining / proposal * (1.0 - 1e-9)).ceil().max(1.0);
-            let h = if n <= 1.0 { remaining } else { remaining / n };
+            let (h, last) = match landing.take() {
+                // θh < h ≤ remaining: never the last step of the span
+                Some(h) => (h, false),
+                None => {
+                    let proposal = self.state.control().proposal(&self.model);
+                    let n = (remaining / proposal * (1.0 - 1e-9)).ceil().max(1.0);
+                    if n <= 1.0 {
+                        (remaining, true)
+                    } else {
+                        (remaining / n, false)
+                    }
+                }
+            };
             let verdict = controlled_step(&self.model, &mut self.state, h);
             match verdict {
                 Ok(Verdict::Accept) => {
                     done += h;
-                    remaining = if n <= 1.0 { 0.0 } else { remaining - h };
+                    remaining = if last { 0.0 } else { remaining - h };
                 }
                 Ok(Verdict::Reject) => {}
+                Ok(Verdict::Land(h_land)) => landing = Some(h_land),
                 Err(error) => {
                     // a failed step is retried shorter, down to the floor
                     if above_floor(&self.model, h) {

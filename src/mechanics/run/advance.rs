@@ -10,7 +10,8 @@ use crate::mechanics::step::error::StepError;
 use crate::mechanics::step::stage::{compose, StepStats};
 use crate::mechanics::step::work::Held;
 
-use super::control::Verdict;
+use super::control::{above_floor, Verdict};
+use super::events::stop_crossing;
 use super::state::State;
 
 /// Advances `state` by `h` seconds with the model's order (inputs held constant) and refreshes
@@ -41,7 +42,10 @@ pub fn step_state(model: &Model, state: &mut State, h: f64) -> Result<StepStats,
 /// One error-controlled attempt of size `h` (`solver.rtol > 0`, see `control`): the step is
 /// taken on the workspace and judged by the local error estimate; an accepted step is
 /// committed like [`step_state`] (outputs left as they were), a rejected one leaves the state
-/// as it was but for the controller's new proposal (`state.control().proposal(model)`).
+/// as it was but for the controller's new proposal (`state.control().proposal(model)`). A step
+/// within the tolerance that crosses a joint limit (`events`) is not committed either: the
+/// verdict [`Verdict::Land`] names the size that ends on the crossing (when it is above the
+/// floor `min_step`).
 ///
 /// # Errors
 /// As [`step_state`]; the state is then unchanged.
@@ -49,6 +53,12 @@ pub fn controlled_step(model: &Model, state: &mut State, h: f64) -> Result<Verdi
     trial(model, state, h)?;
     let verdict = state.ctrl.judge(model, &state.q, &state.ws, h);
     if verdict == Verdict::Accept {
+        let ws = &state.ws;
+        if let Some(theta) = stop_crossing(model, &state.q, &state.angles, &ws.qn, &ws.ang) {
+            if above_floor(model, theta * h) {
+                return Ok(Verdict::Land(theta * h));
+            }
+        }
         commit(state, h);
         // the commit swapped the step's start into the workspace
         state.ctrl.record(&state.ws.qn, h);

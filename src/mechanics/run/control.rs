@@ -36,6 +36,11 @@
 //! accepted (counted in [`Control::floor_steps`]). Until enough samples exist (a run's first
 //! steps: 2 at order 2, 4 at order 4) steps start at `max_step·tol^{1/p}` and double.
 //!
+//! **Noise.** The part of a difference that the coordinates' noise (the Newton iterate's
+//! error) could explain is not counted. When the noise could make a tenth of the tolerance or
+//! more, the estimate cannot tell a good step from a bad one; the noise per unit time falls as
+//! `1/h`, so such a step grows by doubling at most until the estimate is informative again.
+//!
 //! The controller's memory (proposal, samples) is part of the state and of its snapshot, so a
 //! restored state continues bit-identically.
 
@@ -59,6 +64,8 @@ const START_SHARE: f64 = 1e-2;
 /// A step whose estimate the noise could have made this share of the tolerance or more does
 /// not grow the next.
 const NOISY: f64 = 0.1;
+/// Most a noise-dominated estimate may grow the step.
+const NOISY_GROW: f64 = 2.0;
 /// Safety factor of the proposed step.
 const SAFETY: f64 = 0.9;
 /// Most a step may shrink, and grow, from one to the next.
@@ -107,6 +114,9 @@ pub enum Verdict {
     Accept,
     /// The estimate exceeds the tolerance: discard it and retry at [`Control::proposal`].
     Reject,
+    /// The step crosses a joint limit (entering or leaving a stop contact, `run::events`):
+    /// discard it and retry with exactly this size, s, which ends where the crossing is.
+    Land(f64),
 }
 
 impl Control {
@@ -208,8 +218,10 @@ impl Control {
             GROW
         };
         if noise > NOISY {
-            // the differences are mostly the coordinates' noise: no ground to grow the step
-            fac = fac.min(1.0);
+            // the differences are mostly the coordinates' noise, which a longer step makes
+            // smaller (per unit time it is ∝ 1/h): grow by doubling at most, until the estimate
+            // is informative again (held, a step this short would stay here for good)
+            fac = fac.min(NOISY_GROW);
         }
         if e > 1.0 && above_floor(model, h) {
             self.h_next = clamp_step(model, h * fac.min(SAFETY));

@@ -1,0 +1,100 @@
+//! Joint-stop contacts as step ends under error control (`solver.rtol > 0`): a trial step
+//! across which a limited coordinate reaches one of its limits (enters contact) or leaves it
+//! is replaced by a step that ends where it does, so that no step straddles the kink of the
+//! stop force.
+//!
+//! With the coordinate `t` (rad or m; `t₀` at the step start, `t₁` at the trial's end) and a
+//! limit `ℓ`, the signed penetration is `x = t − upper` or `x = lower − t`; a step crosses
+//! when `x₀ ≤ 0 < x₁` (entering) or `x₀ > 0 ≥ x₁` (leaving), and the crossing lies at the
+//! fraction (secant, linear in time)
+//!
+//! ```text
+//! θ = x₀ / (x₀ − x₁) ∈ [0, 1)
+//! ```
+//!
+//! of the step. The earliest `θ` of all limits in `(LANDED, 1 − LANDED)` gives the landing step
+//! `θh`; a crossing within `LANDED` of either end counts as landed already (the secant retry
+//! converges to it: each retry ends closer, and no step is shortened to a sliver).
+
+use crate::mechanics::model::constraint::body_nodes;
+use crate::mechanics::model::runtime::{DofRt, Model};
+
+/// Fractions of a step within this of its start or end count as landed.
+pub const LANDED: f64 = 1e-3;
+
+/// The limited coordinate of joint `j` at the coordinates `q` and unwrapped angles `ang`.
+fn coordinate(model: &Model, j: usize, q: &[f64], ang: &[f64]) -> Option<f64> {
+    let jt = &model.joints[j];
+    jt.stops?;
+    match jt.dofs.first()? {
+        DofRt::Slide(row) => {
+            let qb = body_nodes(q, jt.child);
+            let qa = jt
+                .parent
+                .map_or([crate::math::Vec3::zeros(); 4], |a| body_nodes(q, a));
+            Some(row.eval(&qa, &qb))
+        }
+        DofRt::Turn(_) => Some(ang[jt.turn0]),
+    }
+}
+
+/// The fraction of a step from `x0` to `x1` (signed penetrations) at which it enters or
+/// leaves contact, if it does.
+fn crossing(x0: f64, x1: f64) -> Option<f64> {
+    ((x0 <= 0.0) != (x1 <= 0.0)).then(|| x0 / (x0 - x1))
+}
+
+/// The earliest fraction `θ ∈ (LANDED, 1 − LANDED)` of the step from `(q0, ang0)` to
+/// `(q1, ang1)` at which a joint coordinate with stops reaches one of its limits, entering or
+/// leaving contact (module docs); `None` when no limit is crossed away from the step's ends.
+#[must_use]
+pub fn stop_crossing(
+    model: &Model,
+    q0: &[f64],
+    ang0: &[f64],
+    q1: &[f64],
+    ang1: &[f64],
+) -> Option<f64> {
+    let mut first: Option<f64> = None;
+    for (j, jt) in model.joints.iter().enumerate() {
+        let Some(st) = jt.stops else {
+            continue;
+        };
+        let (Some(t0), Some(t1)) = (
+            coordinate(model, j, q0, ang0),
+            coordinate(model, j, q1, ang1),
+        ) else {
+            continue;
+        };
+        let limits = [
+            st.upper
+                .is_finite()
+                .then_some((t0 - st.upper, t1 - st.upper)),
+            st.lower
+                .is_finite()
+                .then_some((st.lower - t0, st.lower - t1)),
+        ];
+        for (x0, x1) in limits.into_iter().flatten() {
+            if let Some(theta) = crossing(x0, x1) {
+                if theta > LANDED && theta < 1.0 - LANDED && first.is_none_or(|f| theta < f) {
+                    first = Some(theta);
+                }
+            }
+        }
+    }
+    first
+}
+
+#[cfg(test)]
+mod tests {
+    use super::crossing;
+
+    #[test]
+    fn crossing_fraction_is_the_secant() {
+        assert_eq!(crossing(-1.0, 1.0), Some(0.5));
+        assert_eq!(crossing(3.0, -1.0), Some(0.75));
+        assert_eq!(crossing(0.0, 2.0), Some(0.0));
+        assert_eq!(crossing(-1.0, -0.5), None);
+        assert_eq!(crossing(1.0, 0.5), None);
+    }
+}
