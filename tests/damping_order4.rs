@@ -10,8 +10,13 @@ use triad::spec::{Format, Spec};
 /// A disc on a revolute joint, no gravity: J = 1e-4 kg·m², damping c, q̇₀ = 1 rad/s; the rate
 /// decays as exp(−λt), λ = c/J.
 fn disc(c: f64, order: u8, h: f64) -> (Model, State) {
+    disc_with(c, order, 3, h)
+}
+
+/// [`disc`] with the composition's stage count (3: triple jump, 5: Suzuki's).
+fn disc_with(c: f64, order: u8, stages: u8, h: f64) -> (Model, State) {
     let text = format!(
-        "name = \"Spin\"\ngravity = [0.0, 0.0, 0.0]\n[solver]\nmax_step = {h}\norder = {order}\n\
+        "name = \"Spin\"\ngravity = [0.0, 0.0, 0.0]\n[solver]\nmax_step = {h}\norder = {order}\nstages = {stages}\n\
          [[body]]\nname = \"disc\"\nmass = 1.0\ninertia = [0.0001, 0.0001, 0.0001]\n\
          [[joint]]\nname = \"spin\"\ntype = \"revolute\"\nparent = \"world\"\nchild = \"disc\"\naxis = [0.0, 0.0, 1.0]\n\
          damping = {c}\ninitial = {{ q = 0.0, qd = 1.0 }}\n"
@@ -75,5 +80,24 @@ fn order_4_damps_outside_the_band() {
             step(&model, &mut s, h).unwrap();
         }
         assert!(s.outputs().energy < e0, "λh = {lh}");
+    }
+}
+
+/// Suzuki's five stages (`stages = 5`) have a shorter backward stage (`(1 − 4s) h = −0.657 h`),
+/// so their band lies at λh ≈ 3.023–3.055 (the pole `2/0.657 = 3.04`; the triple jump's
+/// 1.134–1.201): the triple jump's worst case damps, the new band is refused alike.
+#[test]
+fn suzuki_moves_the_band() {
+    let h = 1e-3;
+    for lh in [1.1748, 1.19, 2.9, 3.2] {
+        let (model, mut s) = disc_with(lh / h * 1e-4, 4, 5, h);
+        let e0 = s.outputs().energy;
+        step(&model, &mut s, h).unwrap();
+        assert!(s.outputs().energy < e0, "λh = {lh}");
+    }
+    for lh in [3.03, 3.0397, 3.05] {
+        let (model, mut s) = disc_with(lh / h * 1e-4, 4, 5, h);
+        let err = step(&model, &mut s, h).unwrap_err();
+        assert_eq!(err, StepError::DampingAmplified("spin".into()), "λh = {lh}");
     }
 }

@@ -15,7 +15,8 @@ models from fixed_peers_fine.json; triad's error-controlled rows always from ada
                   with err = rtol and the band rtol/10 ... 10 rtol.
 
   python bench/peers/wp_plot.py [RESULTS_DIR] [OUT_DIR]
-      defaults: bench/peers/results/session20 and bench/peers/plots
+      defaults: bench/peers/results/session20 and bench/peers/plots; a RESULTS_DIR holding one
+      accuracy.json (the records of one `bash bench/peers/run.sh`) takes every row from it
 Needs numpy and matplotlib (e.g. target/venv-peers/bin/python). The PNGs carry no timestamp or
 version metadata, so the same records give the same files.
 """
@@ -207,9 +208,15 @@ def tolerance_plot(adaptive):
 
 def main():
     os.makedirs(OUT, exist_ok=True)
-    same = load('fixed_dp_dzhanibekov.json')
-    rest = load('fixed_peers_fine.json')
-    adaptive = load('adaptive.json')
+    if os.path.exists(os.path.join(RESULTS, 'accuracy.json')):
+        # one run of bench/peers/run.sh: every record in one file
+        acc = load('accuracy.json')
+        adaptive = [r for r in acc if r['method'].startswith('EMa')]
+        same = rest = [r for r in acc if not r['method'].startswith('EMa')]
+    else:
+        same = load('fixed_dp_dzhanibekov.json')
+        rest = load('fixed_peers_fine.json')
+        adaptive = load('adaptive.json')
     for model in MODELS:
         print(wp_plot(model, same if model in SAME_RUN else rest, adaptive))
     print(tolerance_plot(adaptive))
