@@ -1,9 +1,8 @@
 #!/usr/bin/env python3
 """Work-precision plots (BENCHMARKS.md, section "Work–precision") from the peers harness records.
 
-Draws, from the same records and with the same combination as wp_table.py (double_pendulum and
-free_body_dzhanibekov: fixed-step rows of every engine from fixed_dp_dzhanibekov.json, the other
-models from fixed_peers_fine.json; triad's error-controlled rows always from adaptive.json):
+Draws, from the records of a results folder (layouts and their combination: wp_records.py, as
+for wp_table.py):
 
   wp_<model>.png  per model: largest joint error over the run (x, log) against cost in µs per
                   simulated second = us_per_step / h (y, log); one line per (engine, method)
@@ -15,12 +14,10 @@ models from fixed_peers_fine.json; triad's error-controlled rows always from ada
                   with err = rtol and the band rtol/10 ... 10 rtol.
 
   python bench/peers/wp_plot.py [RESULTS_DIR] [OUT_DIR]
-      defaults: bench/peers/results/session20 and bench/peers/plots; a RESULTS_DIR holding one
-      accuracy.json (the records of one `bash bench/peers/run.sh`) takes every row from it
+      defaults: bench/peers/results/session21 (the run in BENCHMARKS.md) and bench/peers/plots
 Needs numpy and matplotlib (e.g. target/venv-peers/bin/python). The PNGs carry no timestamp or
 version metadata, so the same records give the same files.
 """
-import json
 import math
 import os
 import sys
@@ -33,13 +30,12 @@ import matplotlib.pyplot as plt  # noqa: E402
 from matplotlib.lines import Line2D  # noqa: E402
 from matplotlib.patches import Patch  # noqa: E402
 
+from wp_records import DEFAULT, MODELS, Records  # noqa: E402
+
 HERE = os.path.dirname(os.path.abspath(__file__))
-RESULTS = sys.argv[1] if len(sys.argv) > 1 else os.path.join(HERE, 'results', 'session20')
+RESULTS = sys.argv[1] if len(sys.argv) > 1 else DEFAULT
 OUT = sys.argv[2] if len(sys.argv) > 2 else os.path.join(HERE, 'plots')
 
-MODELS = ['double_pendulum', 'heavy_top', 'free_body_dzhanibekov', 'free_body_torque',
-          'chain100', 'ur5_pd']
-SAME_RUN = ('double_pendulum', 'free_body_dzhanibekov')  # fixed rows from fixed_dp_dzhanibekov.json
 THRESHOLDS = (1e-4, 1e-6)
 
 # triad: thick, saturated; fixed rows warm, error-controlled sweeps blue
@@ -57,11 +53,6 @@ PEER_COLOR = {'mujoco': '#2ca02c', 'pinocchio': '#9467bd', 'exudyn': '#8c564b',
 PEER_MARKERS = ['o', 's', '^', 'v', 'x', '+', '*']
 PEER_LS = ['-', '--', ':', '-.']
 SAVE = dict(dpi=90, metadata={'Software': None})
-
-
-def load(name):
-    with open(os.path.join(RESULTS, name)) as f:
-        return json.load(f)
 
 
 def cost(r):
@@ -208,18 +199,10 @@ def tolerance_plot(adaptive):
 
 def main():
     os.makedirs(OUT, exist_ok=True)
-    if os.path.exists(os.path.join(RESULTS, 'accuracy.json')):
-        # one run of bench/peers/run.sh: every record in one file
-        acc = load('accuracy.json')
-        adaptive = [r for r in acc if r['method'].startswith('EMa')]
-        same = rest = [r for r in acc if not r['method'].startswith('EMa')]
-    else:
-        same = load('fixed_dp_dzhanibekov.json')
-        rest = load('fixed_peers_fine.json')
-        adaptive = load('adaptive.json')
+    recs = Records(RESULTS)
     for model in MODELS:
-        print(wp_plot(model, same if model in SAME_RUN else rest, adaptive))
-    print(tolerance_plot(adaptive))
+        print(wp_plot(model, recs.fixed(model), recs.adaptive))
+    print(tolerance_plot(recs.adaptive))
 
 
 if __name__ == '__main__':

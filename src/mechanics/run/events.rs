@@ -16,22 +16,20 @@
 //! `θh`; a crossing within `LANDED` of either end counts as landed already (the secant retry
 //! converges to it: each retry ends closer, and no step is shortened to a sliver).
 
+use crate::math::Vec3;
 use crate::mechanics::model::constraint::body_nodes;
-use crate::mechanics::model::runtime::{DofRt, Model};
+use crate::mechanics::model::runtime::{DofRt, JointRt, Model};
 
 /// Fractions of a step within this of its start or end count as landed.
 pub const LANDED: f64 = 1e-3;
 
-/// The limited coordinate of joint `j` at the coordinates `q` and unwrapped angles `ang`.
-fn coordinate(model: &Model, j: usize, q: &[f64], ang: &[f64]) -> Option<f64> {
-    let jt = &model.joints[j];
-    jt.stops?;
+/// The coordinate of joint `jt` (its first, the only one a joint with stops has) at the
+/// coordinates `q` and unwrapped angles `ang`.
+fn coordinate(jt: &JointRt, q: &[f64], ang: &[f64]) -> Option<f64> {
     match jt.dofs.first()? {
         DofRt::Slide(row) => {
             let qb = body_nodes(q, jt.child);
-            let qa = jt
-                .parent
-                .map_or([crate::math::Vec3::zeros(); 4], |a| body_nodes(q, a));
+            let qa = jt.parent.map_or([Vec3::zeros(); 4], |a| body_nodes(q, a));
             Some(row.eval(&qa, &qb))
         }
         DofRt::Turn(_) => Some(ang[jt.turn0]),
@@ -56,14 +54,11 @@ pub fn stop_crossing(
     ang1: &[f64],
 ) -> Option<f64> {
     let mut first: Option<f64> = None;
-    for (j, jt) in model.joints.iter().enumerate() {
+    for jt in &model.joints {
         let Some(st) = jt.stops else {
             continue;
         };
-        let (Some(t0), Some(t1)) = (
-            coordinate(model, j, q0, ang0),
-            coordinate(model, j, q1, ang1),
-        ) else {
+        let (Some(t0), Some(t1)) = (coordinate(jt, q0, ang0), coordinate(jt, q1, ang1)) else {
             continue;
         };
         let limits = [
