@@ -9,7 +9,7 @@
 //! energy balance `E − E₀ − work` at the end. Same settings as `benches/step.rs` (order 2,
 //! h = 1e-3, tolerance 1e-10). Environment: `TRIAD_MULTIPLIERS=1` solves trees in the
 //! multiplier form too, `TRIAD_REDUCED=1` every tree in the reduced form (the default); `TRIAD_TRACE=1` prints the energy balance after every step; `TRIAD_ORDER4=1` steps with the
-//! order-4 composition.
+//! order-4 composition (`TRIAD_STAGES5=1`: Suzuki's five stages instead of the triple jump).
 use triad::mechanics::{step_state, Model, SolverSettings, State};
 
 #[path = "../tests/common/mod.rs"]
@@ -54,6 +54,11 @@ fn main() {
             4
         } else {
             2
+        },
+        stages: if std::env::var_os("TRIAD_STAGES5").is_some() {
+            5
+        } else {
+            3
         },
         tolerance: 1e-10,
         max_iterations: 20,

@@ -170,3 +170,41 @@ fn a_deep_chain_balances_energy_to_round_off_in_the_reduced_form() {
     assert_eq!(fallbacks, 0, "stages handed to the multiplier form");
     assert!(bal < 5e-15, "energy balance {bal:e}");
 }
+
+/// Large steps of fast motion start a stage from a poor predictor (first updates ≈ 1e-2): the
+/// matrix is refreshed at the second iteration, whose chords then contract at about the square
+/// of the first matrix's rate. Heavy top, order 4 with five stages, h = 0.05: about 3.4
+/// iterations per stage, 2 of them factorisations (on chords from the first matrix alone: 28.5
+/// iterations and 5 factorisations per step), no stage handed back, energy balanced.
+#[test]
+fn large_steps_refresh_the_matrix_after_a_poor_first_update() {
+    let h = 0.05;
+    let s = SolverSettings {
+        max_step: h,
+        order: 4,
+        stages: 5,
+        tolerance: 1e-10,
+        max_iterations: 20,
+        ..SolverSettings::default()
+    };
+    let (m, mut st) = build(&heavy_top(), s);
+    assert!(m.uses_reduced_solver());
+    let e0 = st.outputs().energy;
+    let steps = 400;
+    let (mut it, mut fac, mut fallbacks) = (0, 0, 0);
+    for _ in 0..steps {
+        let stats = step_state(&m, &mut st, h).expect("step");
+        it += stats.iterations;
+        fac += stats.factorizations;
+        fallbacks += stats.fallbacks;
+    }
+    st.refresh_outputs(&m);
+    let o = st.outputs();
+    let bal = (o.energy - e0 - o.work).abs() / e0.abs();
+    let (it, fac) = (it as f64 / steps as f64, fac as f64 / steps as f64);
+    eprintln!("heavy top h = {h}: {it} iterations, {fac} factorisations per step, balance {bal:e}");
+    assert_eq!(fallbacks, 0, "stages handed to the multiplier form");
+    assert!(it < 20.0, "{it} iterations per step");
+    assert!(fac > 9.0, "{fac} factorisations per step");
+    assert!(bal < 1e-13, "energy balance {bal:e}");
+}

@@ -28,9 +28,12 @@ OUT="${TRIAD_PEERS_OUT:-$WORK/results}"
 H="${TRIAD_PEERS_H:-1e-4,2e-4,5e-4,1e-3,2e-3,5e-3,1e-2,2e-2,5e-2}"
 "$PY" bench.py --external triad="$ENGINE --variant native" --external triad-fmu="$ENGINE --variant fmu" \
   --external-methods EM2,EM4,EM4s5 --h "$H" --out "$OUT" "$@"
-# triad's tolerance sweep: error-controlled steps, ceiling and communication step 0.1 s
+# triad's tolerance sweep: error-controlled steps, ceiling and communication step 0.1 s, rtol on
+# a 1-2-5 grid like the fixed steps (order 4: 1e-2 ... 1e-9, order 2: 1e-3 ... 1e-6)
+RTOLS() { local e m out=""; for e in $(seq "$2" "$3"); do for m in 5 2 1; do out+="$1-${m}e-$e,"; done; done; echo "$out"; }
+SWEEP="${TRIAD_PEERS_RTOL:-$(RTOLS EMa2 4 6)EMa2-1e-3,$(RTOLS EMa4 3 9)EMa4-1e-2}"
 "$PY" bench.py --engines '' --external triad="$ENGINE --variant native" \
-  --external-methods EMa2-1e-3,EMa2-1e-4,EMa2-1e-5,EMa2-1e-6,EMa4-1e-3,EMa4-1e-4,EMa4-1e-5,EMa4-1e-6,EMa4-1e-7,EMa4-1e-8,EMa4-1e-9 \
+  --external-methods "$SWEEP" \
   --h 0.1 --no-scaling --out "$OUT/adaptive" "$@"
 "$PY" - "$OUT" <<'PY'
 import json, os, sys
