@@ -38,13 +38,14 @@ const GIVE_UP: f64 = 0.5;
 /// iteration. The chord rate is about proportional to the distance between the iterate the
 /// matrix was formed at and the solution (a free body at h = 0.1, Suzuki's stages: first
 /// updates 3e-2, then a steady `θ ≈ 5e-3`, 7–8 iterations per stage), so from a poor
-/// predictor the matrix formed one update later contracts at `θ²` and the stage converges in
-/// about 5 iterations, 2 of them with a fresh matrix (a factorisation costs about 1.2 chord
-/// iterations). Instruction counts (callgrind, order 4, five stages): free body h = 0.1
-/// −18 %, heavy top h = 0.05 −23 %, chain10 h = 0.01 −10 %, double pendulum h = 0.02
-/// −12 %; within ±1 % at the small steps where first updates stay below it (and chain100 at
-/// h = 1e-3, order 2, unchanged); 1e-5 would refresh steps that converge as fast on chords.
-const REFRESH_FIRST: f64 = 1e-4;
+/// predictor the matrix formed one update later contracts at about `θ²` and the stage
+/// converges in about 4–5 iterations, 2 of them with a fresh matrix. Instruction counts
+/// (callgrind, order 4, five stages, against chords on the first matrix only): heavy top
+/// h = 0.05 −12 %, free body h = 0.1 −11 %, chain10 h = 0.01 −9 %, UR5 h = 0.05 −16 %,
+/// double pendulum h = 0.02 −6 %; within ±1 % where first updates stay small (and chain100
+/// at h = 1e-3, order 2, unchanged). 1e-4 gains a few % more on the articulated models but
+/// costs a free body at h = 0.05 +8 % (a 6 × 6 factorisation for ≈ 1 chord iteration saved).
+const REFRESH_FIRST: f64 = 1e-3;
 
 /// Stages that refresh the matrix at their second iteration after chord iterations of a stage
 /// stopped contracting.
