@@ -83,10 +83,16 @@ fn main() {
             st.refresh_outputs(&m);
             let o = st.outputs();
             eprintln!(
-                "trace {} {:.3e} {}",
+                "trace {} {:.3e} {} fallbacks {} residual {:.1e} constraints {:.1e} E {:.6e} W {:.3e} t {:.3}",
                 it,
                 o.energy - e0 - o.work,
-                s.iterations
+                s.iterations,
+                s.fallbacks,
+                s.residual,
+                o.constraint_residual,
+                o.energy,
+                o.work,
+                st.time()
             );
         }
         it += s.iterations;

@@ -8,7 +8,8 @@
 //!   solve and update);
 //! - `reduced`: Newton on the joint increments for trees (the discrete null-space method);
 //! - `predictor` (the Newton start from the previous stages), `finish` (velocity update, work
-//!   account, unwrapped angles), `stage` (a robust stage, the order-4 composition), `error`.
+//!   account, unwrapped angles), `identity` (the spurious roots a converged stage is refused for),
+//!   `stage` (a robust stage, the order-4 composition), `error`.
 //!
 //! Uses: `model`, `linalg` and `crate::math`; never `run`.
 
@@ -17,6 +18,7 @@ pub(crate) mod body_terms;
 mod border_tests;
 pub(crate) mod error;
 pub(crate) mod finish;
+pub(crate) mod identity;
 pub(crate) mod increment;
 pub(crate) mod joint_loads;
 pub(crate) mod newton;

@@ -18,6 +18,7 @@
 
 use super::error::StepError;
 use super::finish::finish;
+use super::identity::{balanced, narrowest, COLLAPSED, LARGE_TURN};
 use super::newton::{evaluate, resolve, solve, stage_rates, update, Held, Mode, Work};
 use super::predictor::{invalidate, predict, record};
 use crate::mechanics::model::constraint::body_nodes;
@@ -243,6 +244,18 @@ fn stage(
     } else {
         multiplier_newton(model, ws, held, h, chord_accept)?
     };
+    // a stage that turned a body by about π, or whose root breaks the energy identity, is
+    // refused (near π the rows are ill-conditioned, at π a root of them need not solve the
+    // equations; see `identity`; the reduced form checked the identity already)
+    let narrowest = narrowest(model, ws);
+    if narrowest < COLLAPSED
+        || (!reduced && narrowest < LARGE_TURN && !balanced(model, ws, held, h))
+    {
+        return Err(StepError::NoConvergence {
+            iterations: it,
+            residual: f64::NAN,
+        });
+    }
     // work and unwrapped angles at the converged iterate
     let work = finish(model, ws, held, h);
     if !work.is_finite() || ws.acc.iter().any(|x| !x.is_finite()) {

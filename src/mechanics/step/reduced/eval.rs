@@ -20,9 +20,7 @@ use super::maps::{joint_map, Map};
 use super::work::RedWork;
 use crate::math::Vec3;
 use crate::mechanics::model::constraint::body_nodes;
-use crate::mechanics::model::constraint::read3;
 use crate::mechanics::model::def::JointType;
-use crate::mechanics::model::kernels::rotation_increment;
 use crate::mechanics::model::runtime::Model;
 
 fn to66(x: &[f64; 36]) -> [[f64; 6]; 6] {
@@ -191,36 +189,4 @@ fn geometric_stiffness(model: &Model, rw: &mut RedWork, b: usize, pm: &Map, qm: 
             [[0.0; 3]; 3]
         };
     }
-}
-
-/// The energy identity of a solution: with the residual `R̃`, `ws.mom` of the last evaluation
-/// (at an iterate within the final update of `ws.q`), `Σ_b Δq_b·R̃_b + θ_b·(m_b − h²/2 τ_b)`
-/// is `−Σ μ Δg = 0` for a solution of the full equations (the constraint forces do no work
-/// while the constraints hold), so `E_{n+1} − E_n = W` exactly. A root of the reduced
-/// equations where the midpoint maps lose rank (a joint turned by about π within the stage)
-/// need not satisfy it; true if the identity holds to `1e-4` of the sum of the terms' sizes.
-pub(crate) fn balanced(model: &Model, ws: &Work, held: &Held, h: f64) -> bool {
-    let hh = 0.5 * h * h;
-    let (mut sum, mut size) = (0.0_f64, 0.0_f64);
-    for b in 0..model.bodies.len() {
-        let dq = body_nodes(&ws.dq, b);
-        for k in 0..4 {
-            let r = read3(&ws.rn, 12 * b + 3 * k);
-            let t = dq[k].dot(&r);
-            sum += t;
-            size += dq[k].norm() * r.norm();
-        }
-        let mut m = read3(&ws.mom, 3 * b);
-        for &(tb, at) in &model.body_torques {
-            if tb == b {
-                m -= Vec3::new(held.inputs[at], held.inputs[at + 1], held.inputs[at + 2]) * hh;
-            }
-        }
-        if m != Vec3::zeros() {
-            let th = rotation_increment(&body_nodes(&ws.qn, b), &body_nodes(&ws.q, b));
-            sum += th.dot(&m);
-            size += th.norm() * m.norm();
-        }
-    }
-    sum.abs() <= 1e-4 * size
 }

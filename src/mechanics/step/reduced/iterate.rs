@@ -20,13 +20,13 @@
 //!   iteration budget, returns `NoConvergence`: the stage is redone by the multiplier form.
 
 use super::super::work::{Held, Work};
-use super::eval::balanced;
 use super::eval::evaluate;
 use super::place::{defects, prepare, size, update};
 use super::tree::{factor, solve};
 use super::work::RedWork;
 use crate::mechanics::model::runtime::Model;
 use crate::mechanics::step::error::StepError;
+use crate::mechanics::step::identity::balanced;
 
 /// Contraction above which the factors are refreshed.
 const REFACTOR: f64 = 0.1;
