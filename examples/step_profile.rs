@@ -8,7 +8,7 @@
 //! protocol), the iterations, the stages handed to the multiplier form, and on stderr the
 //! energy balance `E − E₀ − work` at the end. Same settings as `benches/step.rs` (order 2,
 //! h = 1e-3, tolerance 1e-10). Environment: `TRIAD_MULTIPLIERS=1` solves trees in the
-//! multiplier form too, `TRIAD_REDUCED=1` every tree in the reduced form (the default); `TRIAD_TRACE=1` prints the energy balance after every step; `TRIAD_ORDER4=1` steps with the
+//! multiplier form too, `TRIAD_REDUCED=1` every tree in the reduced form (the default); `TRIAD_TRACE=1` prints the energy balance, iterations, stages handed back, energy, work, time and the largest body angular velocity after every step; `TRIAD_ORDER4=1` steps with the
 //! order-4 composition (`TRIAD_STAGES5=1`: Suzuki's five stages instead of the triple jump).
 use triad::mechanics::{step_state, Model, SolverSettings, State};
 
@@ -83,7 +83,7 @@ fn main() {
             st.refresh_outputs(&m);
             let o = st.outputs();
             eprintln!(
-                "trace {} {:.3e} {} fallbacks {} residual {:.1e} constraints {:.1e} E {:.6e} W {:.3e} t {:.3}",
+                "trace {} {:.3e} {} fallbacks {} residual {:.1e} constraints {:.1e} E {:.6e} W {:.3e} t {:.3} max|w| {:.1}",
                 it,
                 o.energy - e0 - o.work,
                 s.iterations,
@@ -92,7 +92,8 @@ fn main() {
                 o.constraint_residual,
                 o.energy,
                 o.work,
-                st.time()
+                st.time(),
+                o.bodies.iter().map(|b| b.w.norm()).fold(0.0, f64::max)
             );
         }
         it += s.iterations;
