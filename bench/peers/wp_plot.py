@@ -14,7 +14,7 @@ for wp_table.py):
                   with err = rtol and the band rtol/10 ... 10 rtol.
 
   python bench/peers/wp_plot.py [RESULTS_DIR] [OUT_DIR]
-      defaults: bench/peers/results/session22 (the run in BENCHMARKS.md) and bench/peers/plots
+      defaults: bench/peers/results/session22b (the run in BENCHMARKS.md) and bench/peers/plots
 Needs numpy and matplotlib (e.g. target/venv-peers/bin/python). The PNGs carry no timestamp or
 version metadata, so the same records give the same files.
 """

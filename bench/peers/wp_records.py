@@ -12,7 +12,7 @@ MODELS = ['double_pendulum', 'heavy_top', 'free_body_dzhanibekov', 'free_body_to
           'chain100', 'ur5_pd']
 # the models whose fixed rows come from fixed_dp_dzhanibekov.json in the split layout
 SAME_RUN = ('double_pendulum', 'free_body_dzhanibekov')
-DEFAULT = os.path.join(os.path.dirname(os.path.abspath(__file__)), 'results', 'session22')
+DEFAULT = os.path.join(os.path.dirname(os.path.abspath(__file__)), 'results', 'session22b')
 
 
 class Records:

@@ -1,7 +1,7 @@
 #!/usr/bin/env python3
 """Work-precision table (BENCHMARKS.md): cheapest run reaching err <= 1e-4 and 1e-6 per model, triad
 (fixed and error-controlled rows) against the cheapest peer; cost = us per simulated second.
-  python bench/peers/wp_table.py [RESULTS_DIR]   (default: bench/peers/results/session22, the
+  python bench/peers/wp_table.py [RESULTS_DIR]   (default: bench/peers/results/session22b, the
   run in BENCHMARKS.md; the folder layouts: wp_records.py)"""
 import sys
 
