@@ -1,8 +1,8 @@
 #!/usr/bin/env python3
 """Work-precision plots (BENCHMARKS.md, section "Work–precision") from the peers harness records.
 
-Draws, from the records of a results folder (layouts and their combination: wp_records.py, as
-for wp_table.py):
+Draws, from the records of a results folder (its accuracy.json: wp_records.py, as for
+wp_table.py):
 
   wp_<model>.png  per model: largest joint error over the run (x, log) against cost in µs per
                   simulated second = us_per_step / h (y, log); one line per (engine, method)
@@ -205,7 +205,7 @@ def main():
     os.makedirs(OUT, exist_ok=True)
     recs = Records(RESULTS)
     for model in MODELS:
-        print(wp_plot(model, recs.fixed(model), recs.adaptive))
+        print(wp_plot(model, recs.fixed, recs.adaptive))
     print(tolerance_plot(recs.adaptive))
 
 

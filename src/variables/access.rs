@@ -125,7 +125,9 @@ pub fn write_param(
     settings: &mut SolverSettings,
     value: f64,
 ) -> Result<(), String> {
-    let named = |what: &str, r: Result<(), String>| r.map_err(|e| format!("{what} {e}"));
+    fn named<T>(what: &str, r: Result<T, String>) -> Result<T, String> {
+        r.map_err(|e| format!("{what} {e}"))
+    }
     match acc {
         Accessor::Gravity(i) => {
             named("gravity", ranges::any_finite(value))?;
@@ -191,14 +193,13 @@ pub fn write_param(
             settings.tolerance = value;
         }
         Accessor::Order => {
-            settings.order = ranges::order(value).map_err(|e| format!("solver.order {e}"))?;
+            settings.order = named("solver.order", ranges::order(value))?;
         }
         Accessor::MaxSubsteps => {
-            settings.max_substeps =
-                ranges::max_substeps(value).map_err(|e| format!("solver.max_substeps {e}"))?;
+            settings.max_substeps = named("solver.max_substeps", ranges::max_substeps(value))?;
         }
         Accessor::Stages => {
-            settings.stages = ranges::stages(value).map_err(|e| format!("solver.stages {e}"))?;
+            settings.stages = named("solver.stages", ranges::stages(value))?;
         }
         Accessor::Rtol => {
             named("solver.rtol", ranges::rtol(value))?;
