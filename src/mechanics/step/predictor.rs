@@ -22,6 +22,16 @@
 //! nodal rate). The predictor sets only the Newton start: the converged stage does not depend
 //! on it, a better one saves iterations (chain100 at h = 1e-3: 4.0 iterations per step with the
 //! linear start, 2.0 with this one; at order 4, 10.3 → 6.0 per step of three stages).
+//!
+//! At steps that do not resolve the motion the nodal rate is a poor start: `v_{n+1} = 2Δq/h −
+//! vₙ` carries a component that flips sign every stage and is as large as the motion. A stage
+//! that failed from it is retried ([`Start::Means`]) from the last two stages' means alone,
+//! each taken at its stage's centre (`−h₀/2` and `−h₀ − h₁/2` from the stage start, sizes
+//! signed, newest `h₀`), extrapolated linearly to the new stage's centre `h/2`:
+//!
+//! ```text
+//! m̂ = m₀ + (m₀ − m₁) (h + h₀)/(h₀ + h₁)      (m̂ = m₀ where |h₀ + h₁| < |h₀|: centres too close)
+//! ```
 
 use super::work::{Work, HISTORY};
 use crate::math::{skew, Mat3, Vec3};
@@ -31,21 +41,45 @@ use crate::mechanics::model::runtime::Model;
 /// Highest extrapolation degree (its error is judged by the difference of the next order).
 pub const MAX_DEGREE: usize = HISTORY - 2;
 
+/// Where a stage's Newton iteration starts.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub(crate) enum Start {
+    /// The stage's own difference table where it is full, else the nodal rate and the last
+    /// stage's mean (see the module docs).
+    Rates,
+    /// The last two stages' means only (a retry after a failure from the nodal rate).
+    Means,
+}
+
 /// Writes the predictor of a stage of size `h` into `ws.dq`, `ws.q` and the multiplier start
 /// `ws.mu = h² λ/2`; `table` is the stage's difference table (0 for every stage of an order-2
-/// step, 1–3 for the stages of an order-4 step, `None` for halved stages).
-pub(crate) fn predict(model: &Model, ws: &mut Work, h: f64, table: Option<usize>) {
+/// step, 1–3 for the stages of an order-4 step, `None` for halved stages). Returns whether the
+/// start used the nodal rate (no full table), after which [`Start::Means`] is a different start.
+pub(crate) fn predict(
+    model: &Model,
+    ws: &mut Work,
+    h: f64,
+    table: Option<usize>,
+    start: Start,
+) -> bool {
     let nb = model.bodies.len();
     let stride = 6 * nb;
-    let ratio = if ws.hprev[0][0] != 0.0 {
-        h / ws.hprev[0][0]
+    let (h0, h1) = (ws.hprev[0][0], ws.hprev[0][1]);
+    let ratio = if h0 != 0.0 { h / h0 } else { 0.0 };
+    let poly = table.filter(|&t| ws.hprev[t].iter().all(|&x| x == h));
+    // the means' linear extrapolation factor (0: the last mean alone)
+    let slope = if h1 != 0.0 && (h0 + h1).abs() >= h0.abs() {
+        (h + h0) / (h0 + h1)
     } else {
         0.0
     };
-    let poly = table.filter(|&t| ws.hprev[t].iter().all(|&x| x == h));
+    let means = start == Start::Means && h0 != 0.0;
     for b in 0..nb {
         let o = 12 * b;
-        let (vbar, wbar) = if let Some(t) = poly {
+        let (vbar, wbar) = if means {
+            let d = |k: usize, i: usize| read3(&ws.hist, k * stride + 6 * b + i);
+            (d(0, 0) + d(1, 0) * slope, d(0, 3) + d(1, 3) * slope)
+        } else if let Some(t) = poly {
             let at = t * HISTORY * stride;
             extrapolate(&ws.hist[at..at + HISTORY * stride], stride, b, model.lc)
         } else {
@@ -80,6 +114,7 @@ pub(crate) fn predict(model: &Model, ws: &mut Work, h: f64, table: Option<usize>
     for k in 0..ws.mu.len() {
         ws.mu[k] = ws.lam[k] * h * h;
     }
+    poly.is_none() && !means && h0 != 0.0
 }
 
 /// Body `b`'s next mean rates `(v̄, ω̄)` from its difference table: the degree whose next

@@ -20,7 +20,7 @@ use super::error::StepError;
 use super::finish::finish;
 use super::identity::{balanced, narrowest, COLLAPSED, LARGE_TURN};
 use super::newton::{evaluate, resolve, solve, stage_rates, update, Held, Mode, Work};
-use super::predictor::{invalidate, predict, record};
+use super::predictor::{invalidate, predict, record, Start};
 use crate::mechanics::model::constraint::body_nodes;
 use crate::mechanics::model::runtime::Model;
 
@@ -174,10 +174,11 @@ const MULTIPLIER_STAGES: u32 = 8;
 /// Deepest halving of a stage whose Newton iteration failed.
 const MAX_HALVINGS: usize = 3;
 
-/// A stage of size `h`; if Newton fails (no convergence or a singular matrix), the stage is
-/// redone as two EM stages of `h/2` (at most [`MAX_HALVINGS`] deep). Every sub-stage is itself
-/// an EM step, so energy, momentum and the torque balance stay exact; only the local accuracy
-/// of that step changes.
+/// A stage of size `h`; if Newton fails (no convergence or a singular matrix) from a start at
+/// the nodal rate, the stage is retried from the last stages' means (`predictor::Start`), and
+/// if that fails too, redone as two EM stages of `h/2` (at most [`MAX_HALVINGS`] deep). Every
+/// sub-stage is itself an EM step, so energy, momentum and the torque balance stay exact; only
+/// the local accuracy of that step changes.
 fn robust_stage(
     model: &Model,
     ws: &mut Work,
@@ -187,33 +188,22 @@ fn robust_stage(
     depth: usize,
     stats: &mut StepStats,
 ) -> Result<(), StepError> {
-    // the reduced iteration first where it applies; a stage it does not converge is redone
-    // in the multiplier form (same equations, same solution), then halved. For a while after a
-    // stage was handed back, stages go to the multiplier form straight away (large steps on
-    // long chains: the next ones would likely fail alike, at the cost of a failed attempt each)
-    let reduced = model.uses_reduced_solver() && ws.memory.multipliers == 0;
-    ws.memory.multipliers = ws.memory.multipliers.saturating_sub(1);
-    let mut first = stage(model, ws, held, h, table, reduced);
-    if reduced {
-        // any failure of the reduced attempt (also a non-finite iterate, where its defects or
-        // arcs ran away) is handed to the multiplier form, which reports its own
-        if first.is_err() {
-            stats.fallbacks += 1;
-            ws.memory.multipliers = MULTIPLIER_STAGES;
-            first = stage(model, ws, held, h, table, false);
-        }
+    let (mut outcome, nodal) = attempt(model, ws, held, h, table, Start::Rates, stats);
+    let retry = |e: &StepError| {
+        matches!(e, StepError::NoConvergence { .. } | StepError::Singular)
+            && model.settings().max_iterations > 1
+    };
+    if nodal && outcome.as_ref().is_err_and(retry) {
+        outcome = attempt(model, ws, held, h, table, Start::Means, stats).0;
     }
-    match first {
+    match outcome {
         Ok(s) => {
             stats.iterations += s.iterations;
             stats.factorizations += s.factorizations;
             stats.residual = s.residual;
             Ok(())
         }
-        Err(e @ (StepError::NoConvergence { .. } | StepError::Singular))
-            if depth < MAX_HALVINGS && model.settings().max_iterations > 1 =>
-        {
-            let _ = e;
+        Err(e) if depth < MAX_HALVINGS && retry(&e) => {
             if let Some(t) = table {
                 invalidate(ws, t);
             }
@@ -224,8 +214,50 @@ fn robust_stage(
     }
 }
 
-/// One EM stage of size `h` (may be negative inside the composition) on the workspace.
+/// One attempt at a stage of size `h` from `start`: the reduced iteration first where it
+/// applies; a stage it does not converge is redone in the multiplier form (same equations,
+/// same solution). For a while after a stage was handed back, stages go to the multiplier form
+/// straight away (large steps on long chains: the next ones would likely fail alike, at the
+/// cost of a failed attempt each). Also returns whether the start was the nodal rate.
+fn attempt(
+    model: &Model,
+    ws: &mut Work,
+    held: &Held,
+    h: f64,
+    table: Option<usize>,
+    start: Start,
+    stats: &mut StepStats,
+) -> (Result<StepStats, StepError>, bool) {
+    let reduced = model.uses_reduced_solver() && ws.memory.multipliers == 0;
+    ws.memory.multipliers = ws.memory.multipliers.saturating_sub(1);
+    let (mut outcome, nodal) = stage(model, ws, held, h, table, start, reduced);
+    // any failure of the reduced attempt (also a non-finite iterate, where its defects or arcs
+    // ran away) is handed to the multiplier form, which reports its own
+    if reduced && outcome.is_err() {
+        stats.fallbacks += 1;
+        ws.memory.multipliers = MULTIPLIER_STAGES;
+        outcome = stage(model, ws, held, h, table, start, false).0;
+    }
+    (outcome, nodal)
+}
+
+/// One EM stage of size `h` (may be negative inside the composition) on the workspace, from
+/// `start`; also returns whether that start was the nodal rate (`predictor::predict`).
 fn stage(
+    model: &Model,
+    ws: &mut Work,
+    held: &Held,
+    h: f64,
+    table: Option<usize>,
+    start: Start,
+    reduced: bool,
+) -> (Result<StepStats, StepError>, bool) {
+    let nodal = predict(model, ws, h, table, start);
+    (solve_stage(model, ws, held, h, table, reduced), nodal)
+}
+
+/// The stage of [`stage`] from the predictor in the workspace.
+fn solve_stage(
     model: &Model,
     ws: &mut Work,
     held: &Held,
@@ -234,7 +266,6 @@ fn stage(
     reduced: bool,
 ) -> Result<StepStats, StepError> {
     let nb = model.bodies.len();
-    predict(model, ws, h, table);
     stage_rates(ws, h);
     let tol = model.settings().tolerance;
     let chord_accept = (CHORD_ACCEPT * tol).max(FLOOR_SHARE * f64::EPSILON * nb as f64);
