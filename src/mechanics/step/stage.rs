@@ -277,11 +277,9 @@ fn solve_stage(
     };
     // a stage that turned a body by about π, or whose root breaks the energy identity, is
     // refused (near π the rows are ill-conditioned, at π a root of them need not solve the
-    // equations; see `identity`; the reduced form checked the identity already)
+    // equations; see `identity`)
     let narrowest = narrowest(model, ws);
-    if narrowest < COLLAPSED
-        || (!reduced && narrowest < LARGE_TURN && !balanced(model, ws, held, h))
-    {
+    if narrowest < COLLAPSED || (narrowest < LARGE_TURN && !balanced(model, ws, held, h)) {
         return Err(StepError::NoConvergence {
             iterations: it,
             residual: f64::NAN,

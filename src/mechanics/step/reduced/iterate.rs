@@ -26,7 +26,6 @@ use super::tree::{factor, solve};
 use super::work::RedWork;
 use crate::mechanics::model::runtime::Model;
 use crate::mechanics::step::error::StepError;
-use crate::mechanics::step::identity::balanced;
 
 /// Contraction above which the factors are refreshed.
 const REFACTOR: f64 = 0.1;
@@ -91,13 +90,7 @@ pub(crate) fn newton(
     let mut rw = std::mem::take(&mut ws.red);
     let out = run(model, ws, &mut rw, held, h, chord_accept);
     ws.red = rw;
-    match out {
-        Ok(c) if !balanced(model, ws, held, h) => Err(StepError::NoConvergence {
-            iterations: c.iterations,
-            residual: f64::NAN,
-        }),
-        other => other,
-    }
+    out
 }
 
 /// The estimated error if the iterate updated by `upd` (at iteration `it`, from the residual
