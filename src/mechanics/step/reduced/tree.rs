@@ -24,6 +24,10 @@ use crate::mechanics::model::runtime::Model;
 
 type M6 = [[f64; 6]; 6];
 
+/// The twist component of each rate of a free root body (`maps::Map::free`: `S = I₆` with the
+/// rotation rates first, so rate `k` is twist component `FREE[k]`).
+const FREE: [usize; 6] = [3, 4, 5, 0, 1, 2];
+
 #[inline]
 fn dot6(a: &V6, b: &V6) -> f64 {
     a[0] * b[0] + a[1] * b[1] + a[2] * b[2] + a[3] * b[3] + a[4] * b[4] + a[5] * b[5]
@@ -77,6 +81,31 @@ fn invert(a: &mut M6, n: usize) -> bool {
     }
 }
 
+/// In-place inverse of a free root's `D` like [`invert`]; where its rotation and translation
+/// rates do not couple (a free body alone: inertia, gravity and its own loads keep them apart;
+/// a floating tree's root couples them through its subtree) as two 3 × 3 blocks, with the
+/// pivot bound of the whole.
+fn invert_free(a: &mut M6) -> bool {
+    let apart = (0..3).all(|i| (3..6).all(|j| a[i][j] == 0.0 && a[j][i] == 0.0));
+    if !apart {
+        return invert(a, 6);
+    }
+    let big = amax(a);
+    if !(big.is_finite() && big > 0.0) {
+        return false;
+    }
+    let mut r: [[f64; 3]; 3] = std::array::from_fn(|i| std::array::from_fn(|j| a[i][j]));
+    let mut t: [[f64; 3]; 3] = std::array::from_fn(|i| std::array::from_fn(|j| a[3 + i][3 + j]));
+    if !(small_mat::invert(&mut r, 1e-14 * big) && small_mat::invert(&mut t, 1e-14 * big)) {
+        return false;
+    }
+    for i in 0..3 {
+        a[i][..3].copy_from_slice(&r[i]);
+        a[3 + i][3..].copy_from_slice(&t[i]);
+    }
+    true
+}
+
 /// Factors the Newton matrix assembled by the last Jacobian pass (`rw.kd` is overwritten by
 /// the articulated blocks); false if a joint's `D` is singular.
 pub(crate) fn factor(model: &Model, rw: &mut RedWork) -> bool {
@@ -88,6 +117,21 @@ pub(crate) fn factor(model: &Model, rw: &mut RedWork) -> bool {
         let (m, mb) = (&rw.fq[b], &rw.fp[b]);
         let k = &rw.kd[b];
         let f = m.f();
+        // D = S̄ᵀ K S + X_c S
+        let d = &mut rw.dinv[b];
+        let xc = &rw.xc[b];
+        if model.tree_joint[b].is_none() {
+            // a free root: S = S̄ permutes the twist (rotation rates first), D = K permuted
+            for r in 0..6 {
+                for c in 0..6 {
+                    d[r][c] = k[FREE[r]][FREE[c]] + xc[r][FREE[c]];
+                }
+            }
+            if !invert_free(d) {
+                return false;
+            }
+            continue;
+        }
         // the columns of S and S̄
         let mut sq = [[0.0; 6]; 6];
         let mut sp = [[0.0; 6]; 6];
@@ -95,9 +139,6 @@ pub(crate) fn factor(model: &Model, rw: &mut RedWork) -> bool {
             sq[c] = m.s_col(c);
             sp[c] = mb.s_col(c);
         }
-        // D = S̄ᵀ K S + X_c S
-        let d = &mut rw.dinv[b];
-        let xc = &rw.xc[b];
         for c in 0..f {
             let ks = mul_vec(k, &sq[c]);
             for r in 0..f {
