@@ -238,6 +238,12 @@ pub(crate) fn solve(model: &Model, rw: &mut RedWork) {
         *x = [0.0; 6];
     }
     for &b in model.order.iter().rev() {
+        if model.tree_joint[b].is_none() {
+            // a free root: no defect (`place::defects`), `S̄ᵀ` permutes the bias
+            let e: V6 = std::array::from_fn(|k| rw.bias[b][FREE[k]] + rw.res[b][k]);
+            rw.yv[b] = std::array::from_fn(|r| (0..6).map(|l| rw.dinv[b][r][l] * e[l]).sum());
+            continue;
+        }
         let (m, mb) = (&rw.fq[b], &rw.fp[b]);
         let f = m.f();
         // the joint's defect c moves the child: bias K c and the joint equations' X_c c
@@ -269,6 +275,14 @@ pub(crate) fn solve(model: &Model, rw: &mut RedWork) {
         }
     }
     for &b in &model.order {
+        if model.tree_joint[b].is_none() {
+            let du: V6 = std::array::from_fn(|k| -rw.yv[b][k]);
+            for k in 0..6 {
+                rw.dx[b][FREE[k]] = du[k];
+            }
+            rw.res[b] = du;
+            continue;
+        }
         let m = &rw.fq[b];
         let f = m.f();
         let mut du = [0.0; 6];
