@@ -230,34 +230,22 @@ fn attempt(
 ) -> (Result<StepStats, StepError>, bool) {
     let reduced = model.uses_reduced_solver() && ws.memory.multipliers == 0;
     ws.memory.multipliers = ws.memory.multipliers.saturating_sub(1);
-    let (mut outcome, nodal) = stage(model, ws, held, h, table, start, reduced);
+    let nodal = predict(model, ws, h, table, start);
+    let mut outcome = stage(model, ws, held, h, table, reduced);
     // any failure of the reduced attempt (also a non-finite iterate, where its defects or arcs
     // ran away) is handed to the multiplier form, which reports its own
     if reduced && outcome.is_err() {
         stats.fallbacks += 1;
         ws.memory.multipliers = MULTIPLIER_STAGES;
-        outcome = stage(model, ws, held, h, table, start, false).0;
+        predict(model, ws, h, table, start);
+        outcome = stage(model, ws, held, h, table, false);
     }
     (outcome, nodal)
 }
 
 /// One EM stage of size `h` (may be negative inside the composition) on the workspace, from
-/// `start`; also returns whether that start was the nodal rate (`predictor::predict`).
+/// the predictor in `ws.q`, `ws.dq`, `ws.mu` (`predictor::predict`).
 fn stage(
-    model: &Model,
-    ws: &mut Work,
-    held: &Held,
-    h: f64,
-    table: Option<usize>,
-    start: Start,
-    reduced: bool,
-) -> (Result<StepStats, StepError>, bool) {
-    let nodal = predict(model, ws, h, table, start);
-    (solve_stage(model, ws, held, h, table, reduced), nodal)
-}
-
-/// The stage of [`stage`] from the predictor in the workspace.
-fn solve_stage(
     model: &Model,
     ws: &mut Work,
     held: &Held,
