@@ -28,6 +28,9 @@ type M6 = [[f64; 6]; 6];
 /// rotation rates first, so rate `k` is twist component `FREE[k]`).
 const FREE: [usize; 6] = [3, 4, 5, 0, 1, 2];
 
+/// Smallest pivot of a joint's `D`, relative to its largest entry.
+const PIVOT: f64 = 1e-14;
+
 #[inline]
 fn dot6(a: &V6, b: &V6) -> f64 {
     a[0] * b[0] + a[1] * b[1] + a[2] * b[2] + a[3] * b[3] + a[4] * b[4] + a[5] * b[5]
@@ -57,12 +60,12 @@ fn left_at(m: &Map, x: &M6) -> M6 {
 }
 
 /// In-place inverse of the leading `n × n` block by the supernode kernel
-/// (`small_mat::invert`); false if a pivot is not above `1e-14` times the largest entry.
+/// (`small_mat::invert`); false if a pivot is not above [`PIVOT`] times the largest entry.
 fn invert(a: &mut M6, n: usize) -> bool {
     fn lead<const N: usize>(a: &mut M6) -> bool {
         let mut m: [[f64; N]; N] = std::array::from_fn(|i| std::array::from_fn(|j| a[i][j]));
         let big = amax(&m);
-        if !(big.is_finite() && big > 0.0 && small_mat::invert(&mut m, 1e-14 * big)) {
+        if !(big.is_finite() && big > 0.0 && small_mat::invert(&mut m, PIVOT * big)) {
             return false;
         }
         for i in 0..N {
@@ -96,7 +99,7 @@ fn invert_free(a: &mut M6) -> bool {
     }
     let mut r: [[f64; 3]; 3] = std::array::from_fn(|i| std::array::from_fn(|j| a[i][j]));
     let mut t: [[f64; 3]; 3] = std::array::from_fn(|i| std::array::from_fn(|j| a[3 + i][3 + j]));
-    if !(small_mat::invert(&mut r, 1e-14 * big) && small_mat::invert(&mut t, 1e-14 * big)) {
+    if !(small_mat::invert(&mut r, PIVOT * big) && small_mat::invert(&mut t, PIVOT * big)) {
         return false;
     }
     for i in 0..3 {
