@@ -2,7 +2,9 @@
 //! or hostile importer would make them: every function in every state, unknown value
 //! references, NULL arrays, NaN and huge values, tiny/denormal/huge/negative steps, mismatched
 //! communication points, corrupted and foreign saved states, bogus state pointers, instances
-//! freed with states outstanding. 25 000 calls on each shipped model (200 000 in all).
+//! freed with states outstanding. Two instances of the model live side by side and the calls
+//! go to either, so FMU states move between instances (got in one, set, serialised or freed
+//! through the other) as hosts with pools of instances do. 25 000 calls on each shipped model.
 //!
 //! Asserted after every call: no panic and no `fmi2Fatal` (nothing reaches the poisoning
 //! path), a status among the five of FMI 2.0 (never `fmi2Pending`), an `fmi2Error` changes
@@ -115,8 +117,13 @@ struct Driver<'a> {
     inputs: Vec<u32>,
     params: Vec<u32>,
     outputs: Vec<u32>,
-    /// FMU states handed out by the current instance (some freed behind our back on purpose).
-    states: Vec<fmi2FMUstate>,
+    /// FMU states handed out by either instance, with the serial number of the instance that
+    /// made it (some freed behind our back on purpose).
+    states: Vec<(fmi2FMUstate, usize)>,
+    /// The serial number of the instance the next call goes to.
+    serial: usize,
+    /// States set into an instance that did not make them.
+    moved: usize,
     /// Serialised states seen so far (valid ones, to corrupt or restore).
     saved: Vec<Vec<u8>>,
     foreign: Vec<u8>,
@@ -256,18 +263,22 @@ impl Driver<'_> {
                 let mut st: fmi2FMUstate = std::ptr::null_mut();
                 let s = unsafe { fmi2GetFMUstate(c, &mut st) };
                 if s == fmi2OK {
-                    self.states.push(st);
+                    self.states.push((st, self.serial));
                 }
                 s
             }
             18 => {
                 let mut junk = [0u64; 4];
-                let st = if self.states.is_empty() || self.rng.chance(0.2) {
-                    junk.as_mut_ptr().cast()
+                let (st, from) = if self.states.is_empty() || self.rng.chance(0.2) {
+                    (junk.as_mut_ptr().cast(), self.serial)
                 } else {
                     self.rng.pick(&self.states)
                 };
-                unsafe { fmi2SetFMUstate(c, st) }
+                let s = unsafe { fmi2SetFMUstate(c, st) };
+                if s == fmi2OK && from != self.serial {
+                    self.moved += 1;
+                }
+                s
             }
             19 => {
                 if self.states.is_empty() {
@@ -275,7 +286,7 @@ impl Driver<'_> {
                     return unsafe { fmi2FreeFMUstate(c, &mut null) };
                 }
                 let k = self.rng.below(self.states.len());
-                let mut st = self.states[k];
+                let mut st = self.states[k].0;
                 let s = unsafe { fmi2FreeFMUstate(c, &mut st) };
                 if s == fmi2OK {
                     // keep the dangling copy now and then: using it must be refused
@@ -287,7 +298,7 @@ impl Driver<'_> {
             }
             20 => {
                 // serialise a held state
-                let Some(&st) = self.states.first() else {
+                let Some(&(st, _)) = self.states.first() else {
                     return fmi2OK;
                 };
                 let mut n = 0;
@@ -329,7 +340,7 @@ impl Driver<'_> {
                     fmi2DeSerializeFMUstate(c, bytes.as_ptr().cast(), bytes.len(), &mut st)
                 };
                 if s == fmi2OK {
-                    self.states.push(st);
+                    self.states.push((st, self.serial));
                 }
                 s
             }
@@ -402,6 +413,7 @@ impl Driver<'_> {
 #[test]
 fn random_call_sequences_keep_every_promise() {
     let mut total = 0usize;
+    let mut moved = 0usize;
     // (call kind, status) → count: the sequence must reach every state and outcome
     let mut seen = std::collections::HashMap::<(usize, i32), usize>::new();
     let foreign = {
@@ -439,19 +451,31 @@ fn random_call_sequences_keep_every_promise() {
             outputs: of(Causality::Output, VarType::Real),
             reals,
             states: Vec::new(),
+            serial: 0,
+            moved: 0,
             saved: Vec::new(),
             foreign: foreign.clone(),
             last: 0,
         };
-        let mut f = Fmu::new(d.m);
+        // two instances side by side, each with its serial number
+        let mut pair = [(Fmu::new(d.m), 0usize), (Fmu::new(d.m), 1usize)];
+        let mut next_serial = 2;
         for i in 0..CALLS_PER_MODEL {
             if d.rng.chance(0.001) {
-                // free the instance with states outstanding, start a new one
-                d.states.clear();
-                f = Fmu::new(d.m);
+                // free an instance with states outstanding (they die with it: some copies are
+                // kept, and using them must be refused), start a new one
+                let k = d.rng.below(2);
+                let dead = pair[k].1;
+                let keep = d.rng.chance(0.5);
+                d.states.retain(|&(_, from)| from != dead || keep);
+                pair[k] = (Fmu::new(d.m), next_serial);
+                next_serial += 1;
             }
-            let before = observe(&f, &d.reals, &d.ints);
-            let status = d.call(&f);
+            let (f, serial) = &pair[d.rng.below(2)];
+            d.serial = *serial;
+            let f = &*f;
+            let before = observe(f, &d.reals, &d.ints);
+            let status = d.call(f);
             total += 1;
             *seen.entry((d.last, status)).or_default() += 1;
             assert!(
@@ -459,7 +483,7 @@ fn random_call_sequences_keep_every_promise() {
                 "{name} call {i}: status {status}: {:?}",
                 f.messages().last()
             );
-            let after = observe(&f, &d.reals, &d.ints);
+            let after = observe(f, &d.reals, &d.ints);
             if status == fmi2Error {
                 assert_eq!(
                     before,
@@ -481,6 +505,7 @@ fn random_call_sequences_keep_every_promise() {
                 f.log.lock().unwrap().clear();
             }
         }
+        moved += d.moved;
     }
     assert!(total >= 200_000, "{total} calls");
     let count = |kinds: std::ops::RangeInclusive<usize>, status: i32| -> usize {
@@ -496,6 +521,7 @@ fn random_call_sequences_keep_every_promise() {
         ("sets refused", count(12..=14, fmi2Error)),
         ("states restored", count(18..=18, fmi2OK)),
         ("states refused", count(18..=18, fmi2Error)),
+        ("states moved between instances", moved),
         ("buffers deserialised", count(21..=22, fmi2OK)),
         ("buffers refused", count(21..=22, fmi2Error)),
     ];

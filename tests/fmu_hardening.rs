@@ -13,7 +13,6 @@ mod fmu_support;
 use fmu_support::*;
 use triad::ffi::common::*;
 use triad::ffi::getset::*;
-use triad::ffi::state::*;
 use triad::ffi::types::*;
 use triad::variables::Causality;
 
@@ -234,34 +233,4 @@ fn saved_states_are_verified_field_by_field() {
     // nothing changed, and the instance goes on
     assert_eq!(all_outputs(&m, &f), before);
     assert_eq!(f.step(0.01, 0.01), fmi2OK);
-}
-
-#[test]
-fn fmu_state_pointers_must_be_live_states_of_the_instance() {
-    let m = TestModel::pendulum();
-    let f = Fmu::initialised(&m);
-    let g = Fmu::initialised(&m);
-    let mut st: fmi2FMUstate = std::ptr::null_mut();
-    assert_eq!(unsafe { fmi2GetFMUstate(f.c, &mut st) }, fmi2OK);
-    // another instance's state, and a pointer that is no state at all
-    assert_eq!(unsafe { fmi2SetFMUstate(g.c, st) }, fmi2Error);
-    let mut junk = [0u64; 8];
-    let fake: fmi2FMUstate = junk.as_mut_ptr().cast();
-    assert_eq!(unsafe { fmi2SetFMUstate(f.c, fake) }, fmi2Error);
-    let mut n = 0usize;
-    assert_eq!(
-        unsafe { fmi2SerializedFMUstateSize(f.c, fake, &mut n) },
-        fmi2Error
-    );
-    // freed: refused afterwards
-    let copy = st;
-    assert_eq!(unsafe { fmi2FreeFMUstate(f.c, &mut st) }, fmi2OK);
-    assert!(st.is_null());
-    assert_eq!(unsafe { fmi2SetFMUstate(f.c, copy) }, fmi2Error);
-    let mut again = copy;
-    assert_eq!(unsafe { fmi2FreeFMUstate(f.c, &mut again) }, fmi2Error);
-    // states left outstanding are freed with the instance (run under a leak checker to see)
-    let mut kept: fmi2FMUstate = std::ptr::null_mut();
-    assert_eq!(unsafe { fmi2GetFMUstate(f.c, &mut kept) }, fmi2OK);
-    assert!(!kept.is_null());
 }

@@ -5,7 +5,6 @@
 
 use crate::fmu::{FmuError, Instance, Status};
 use std::any::Any;
-use std::collections::HashSet;
 use std::panic::{catch_unwind, AssertUnwindSafe};
 
 use super::types::{
@@ -53,9 +52,6 @@ pub struct Component {
     magic: u64,
     /// The instance.
     pub instance: Instance,
-    /// The FMU states handed out by this instance and not yet freed (addresses of
-    /// `Box<Snapshot>`s): a pointer not in here is refused, and `fmi2FreeInstance` frees the rest.
-    pub states: HashSet<usize>,
 }
 
 /// The status code of a [`Status`].
@@ -107,7 +103,8 @@ pub(crate) unsafe fn with_instance(
     unsafe { with_component(c, function, |comp| f(&mut comp.instance)) }
 }
 
-/// [`with_instance`] for calls that also need the component's FMU-state registry.
+/// [`with_instance`] for calls that also need the component itself (its address owns the FMU
+/// states it allocates, see `registry`).
 ///
 /// # Safety
 /// As [`component`].
@@ -188,7 +185,6 @@ pub(crate) fn into_component(instance: Instance) -> fmi2Component {
     Box::into_raw(Box::new(Component {
         magic: MAGIC,
         instance,
-        states: HashSet::new(),
     }))
     .cast()
 }
@@ -201,11 +197,7 @@ pub(crate) unsafe fn free_component(c: fmi2Component) {
     // SAFETY: forwarded caller contract: a live Box<Component>.
     if let Some(comp) = unsafe { component(c) } {
         comp.magic = 0;
-        for &s in &comp.states {
-            // SAFETY: every registered address is a live Box<Snapshot> made by fmi2GetFMUstate
-            // or fmi2DeSerializeFMUstate and removed from the set when freed.
-            drop(unsafe { Box::from_raw(s as *mut crate::fmu::Snapshot) });
-        }
+        super::registry::free_owned_by(c as usize);
         // SAFETY: the pointer came from Box::into_raw in into_component and is freed once (magic reset).
         drop(unsafe { Box::from_raw(c.cast::<Component>()) });
     }

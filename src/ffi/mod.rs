@@ -6,7 +6,8 @@
 //! - **Panics** never cross the C boundary: every body runs inside `catch_unwind`
 //!   (`ffi_fn!`). A panic is logged (`logStatusFatal`), poisons *that* instance (every later
 //!   call but `fmi2FreeInstance` returns `fmi2Error`) and returns `fmi2Fatal`. Other instances
-//!   are unaffected: there is no global state.
+//!   are unaffected. The one process-wide structure is the registry of live FMU states
+//!   (`registry.rs`, behind a lock), so that a state moves between instances of a model.
 //! - **NULL** pointers (`non_null!`) are logged and rejected with `fmi2Error`; an array
 //!   pointer may be NULL when its length is 0. A NULL `fmi2Component` returns `fmi2Error`
 //!   (nothing to log to).
@@ -23,10 +24,12 @@ pub mod cosim;
 pub mod getset;
 mod guard;
 pub mod logger;
+mod registry;
 pub mod state;
 pub mod types;
 
 pub use guard::{code, triad_test_panic, Component};
+pub use registry::live_count as live_fmu_states;
 
 // every export has exactly the standard's C type
 use common::*;

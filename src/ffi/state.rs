@@ -1,40 +1,61 @@
 //! FMU states (FMI 2.0.4 §2.1.8): get/set/free and (de)serialisation. An `fmi2FMUstate` is a
-//! `Box<Snapshot>`; serialised bytes follow the format documented in `fmu::snapshot`.
+//! `Box<Snapshot>` in the process-wide `registry`; serialised bytes follow the format documented in `fmu::snapshot`.
 
 use super::guard::{ffi_fn, non_null, slice, with_component, Component};
+use super::registry;
 use super::types::*;
 use crate::fmu::{FmuError, Op, Snapshot, Status};
-use std::collections::HashSet;
 
-/// The snapshot behind an FMU state pointer, if this instance handed it out and it is not freed.
-/// `states` is the component's registry; the snapshot is borrowed for as long as it is.
-fn snapshot(states: &HashSet<usize>, s: fmi2FMUstate) -> Result<&Snapshot, FmuError> {
-    non_null!(s, "FMUstate");
-    if !states.contains(&(s as usize)) {
-        return Err(FmuError::rejected(
-            "FMUstate is not a live FMU state of this instance (freed, or from elsewhere)",
-        ));
-    }
-    // SAFETY: a registered address is a live Box<Snapshot> owned by this component.
-    Ok(unsafe { &*s.cast::<Snapshot>() })
+const NOT_LIVE: &str =
+    "FMUstate is not a live FMU state of this process (freed, its instance freed, or never handed out)";
+
+/// The address that owns the states `comp` allocates.
+fn owner(comp: &Component) -> usize {
+    std::ptr::from_ref(comp) as usize
 }
 
-/// Stores `snap` in `*state`: overwrites the existing snapshot if `*state` is one of this
-/// instance's live states (FMI 2.0.4: a previously returned state may be reused), else
-/// allocates and registers a new one.
+/// Runs `f` on the live FMU state `s` (any live instance's, see `registry`), or refuses a NULL
+/// or unknown pointer without dereferencing it.
+fn with_snapshot<R>(s: fmi2FMUstate, f: impl FnOnce(&mut Snapshot) -> R) -> Result<R, FmuError> {
+    non_null!(s, "FMUstate");
+    registry::with_state(s as usize, f).ok_or_else(|| FmuError::rejected(NOT_LIVE))
+}
+
+/// Refuses a state of another model loaded in the same process (another GUID).
+fn same_model(comp: &Component, snap: &Snapshot) -> Result<(), FmuError> {
+    let guid = comp.instance.guid();
+    if snap.guid() == guid {
+        Ok(())
+    } else {
+        Err(FmuError::rejected(format!(
+            "FMU state belongs to model {} (this is {guid})",
+            snap.guid()
+        )))
+    }
+}
+
+/// Stores `snap` in `*state`: overwrites the existing snapshot if `*state` is a live state of
+/// this model (FMI 2.0.4: a previously returned state may be reused), else allocates and
+/// registers a new one owned by `comp`.
 ///
 /// # Safety
 /// `state` non-NULL and valid for reads and writes.
-unsafe fn store(comp: &mut Component, state: *mut fmi2FMUstate, snap: Snapshot) {
+unsafe fn store(comp: &Component, state: *mut fmi2FMUstate, snap: Snapshot) {
     // SAFETY: state is valid for reads/writes per the caller.
     let slot = unsafe { &mut *state };
-    if comp.states.contains(&(*slot as usize)) {
-        // SAFETY: a registered address is a live Box<Snapshot> owned by this component.
-        unsafe { *slot.cast::<Snapshot>() = snap };
-    } else {
-        let p = Box::into_raw(Box::new(snap));
-        comp.states.insert(p as usize);
-        *slot = p.cast();
+    let mut snap = Some(snap);
+    let guid = comp.instance.guid();
+    let reused = !slot.is_null()
+        && registry::with_state(*slot as usize, |old| {
+            if old.guid() == guid {
+                *old = snap.take().expect("moved once");
+            }
+        })
+        .is_some()
+        && snap.is_none();
+    if !reused {
+        let snap = snap.take().expect("not moved");
+        *slot = registry::insert(owner(comp), snap).cast();
     }
 }
 
@@ -54,25 +75,26 @@ ffi_fn! {
 }
 
 ffi_fn! {
-    /// `fmi2SetFMUstate` (FMI 2.0.4 §2.1.8): restores a state of the same model (GUID checked);
-    /// the continuation is bit-identical to the original run.
+    /// `fmi2SetFMUstate` (FMI 2.0.4 §2.1.8): restores a live state of the same model, got from
+    /// this or any other live instance in the process (GUID and sizes checked); the continuation
+    /// is bit-identical to the original run.
     fn fmi2SetFMUstate(c: fmi2Component, FMUstate: fmi2FMUstate) -> fmi2Status {
         // SAFETY: FMI contract on c and FMUstate.
         unsafe {
             with_component(c, "fmi2SetFMUstate", |comp| {
                 comp.instance.check(Op::FmuState, "fmi2SetFMUstate")?;
-                // the registry and the instance are distinct fields: no copy of the state needed
-                let Component { instance, states, .. } = comp;
-                let snap = snapshot(states, FMUstate)?;
-                instance.set_fmu_state(snap)
+                // a copy, so the registry is not held while the model is rebuilt
+                let snap = with_snapshot(FMUstate, |s| s.clone())?;
+                comp.instance.set_fmu_state(&snap)
             })
         }
     } ?= fmi2Fatal
 }
 
 ffi_fn! {
-    /// `fmi2FreeFMUstate` (FMI 2.0.4 §2.1.8): frees `*FMUstate` and sets it to NULL (NULL: no-op;
-    /// a pointer this instance did not hand out, or freed already: `fmi2Error`).
+    /// `fmi2FreeFMUstate` (FMI 2.0.4 §2.1.8): frees `*FMUstate` and sets it to NULL (NULL: no-op).
+    /// Any live instance of the same model may free it (FMI does not say which must); a state of
+    /// another model, or a pointer that is not a live state: `fmi2Error`, nothing freed.
     fn fmi2FreeFMUstate(c: fmi2Component, FMUstate: *mut fmi2FMUstate) -> fmi2Status {
         // SAFETY: FMI contract on c and FMUstate.
         unsafe {
@@ -81,9 +103,8 @@ ffi_fn! {
                 if FMUstate.is_null() || (*FMUstate).is_null() {
                     return Ok(Status::Ok);
                 }
-                snapshot(&comp.states, *FMUstate)?;
-                comp.states.remove(&(*FMUstate as usize));
-                drop(Box::from_raw((*FMUstate).cast::<Snapshot>()));
+                registry::free(*FMUstate as usize, |snap| same_model(comp, snap))
+                    .ok_or_else(|| FmuError::rejected(NOT_LIVE))??;
                 *FMUstate = std::ptr::null_mut();
                 Ok(Status::Ok)
             })
@@ -99,7 +120,7 @@ ffi_fn! {
             with_component(c, "fmi2SerializedFMUstateSize", |comp| {
                 comp.instance.check(Op::FmuState, "fmi2SerializedFMUstateSize")?;
                 non_null!(size, "size");
-                *size = snapshot(&comp.states, FMUstate)?.to_bytes().len();
+                *size = with_snapshot(FMUstate, |s| same_model(comp, s).map(|()| s.to_bytes().len()))??;
                 Ok(Status::Ok)
             })
         }
@@ -113,7 +134,7 @@ ffi_fn! {
         unsafe {
             with_component(c, "fmi2SerializeFMUstate", |comp| {
                 comp.instance.check(Op::FmuState, "fmi2SerializeFMUstate")?;
-                let bytes = snapshot(&comp.states, FMUstate)?.to_bytes();
+                let bytes = with_snapshot(FMUstate, |s| same_model(comp, s).map(|()| s.to_bytes()))??;
                 if size < bytes.len() {
                     return Err(FmuError::rejected(format!("buffer of {size} bytes is too small for {} bytes", bytes.len())));
                 }
@@ -138,9 +159,7 @@ ffi_fn! {
                 let bytes = slice(serializedState.cast::<u8>(), size, "serializedState")?;
                 let snap = Snapshot::from_bytes(bytes).map_err(FmuError::Rejected)?;
                 comp.instance.verify_fmu_state(&snap)?;
-                let p = Box::into_raw(Box::new(snap));
-                comp.states.insert(p as usize);
-                *FMUstate = p.cast();
+                *FMUstate = registry::insert(owner(comp), snap).cast();
                 Ok(Status::Ok)
             })
         }
