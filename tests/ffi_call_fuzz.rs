@@ -473,7 +473,6 @@ fn random_call_sequences_keep_every_promise() {
             }
             let (f, serial) = &pair[d.rng.below(2)];
             d.serial = *serial;
-            let f = &*f;
             let before = observe(f, &d.reals, &d.ints);
             let status = d.call(f);
             total += 1;
