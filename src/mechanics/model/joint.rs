@@ -78,10 +78,14 @@ pub fn body_rates(v: &[f64], body: Option<usize>) -> Nodes {
 /// Orthonormal `S` with `S e₃ = n` (n unit): the cyclic permutation for a coordinate axis
 /// (`±e1 → [e2, ±e3, ±e1]`, `±e2 → [e3, ±e1, ±e2]`, `e3 → I`), else the least rotation
 /// taking `e₃` to `n` (via `−n` when `n_z < 0`).
+///
+/// A coordinate axis is one whose other two components are exactly zero: an axis tilted by
+/// t < 1.5e-8 rad normalises to a component of exactly ±1 while its others are ≈ t, and the
+/// permutation frame beside it would be off by t (non-orthonormal bodies below the joint).
 #[must_use]
 pub fn axis_frame(n: &Vec3) -> Mat3 {
     for k in 0..3 {
-        if n[k].abs() == 1.0 {
+        if n[k].abs() == 1.0 && n[(k + 1) % 3] == 0.0 && n[(k + 2) % 3] == 0.0 {
             let s = n[k];
             let (e1, e2) = (Vec3::ith((k + 1) % 3, 1.0), Vec3::ith((k + 2) % 3, s));
             return Mat3::from_columns(&[e1, e2, *n]);

@@ -10,6 +10,10 @@ fn axis_frames_are_rotations() {
         -Vec3::z(),
         Vec3::new(0.3, -0.4, 0.5).normalize(),
         Vec3::new(0.3, 0.4, -0.86).normalize(),
+        // tilted by less than the spacing of doubles at 1: a component normalises to ±1
+        Vec3::new(-1.3e-8, -1.000_000_3, 0.0).normalize(),
+        Vec3::new(1.0, 0.0, 1e-13).normalize(),
+        Vec3::new(0.0, 1e-15, -1.0).normalize(),
     ];
     for n in &axes {
         let s = axis_frame(n);
