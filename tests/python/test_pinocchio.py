@@ -4,7 +4,8 @@ The robots are example-robot-data's own URDFs, found at run time in the venv (no
 copied here): fixed-base arms and hands of a dozen makers (products of inertia, rotated
 inertials, merged fixed links, damping, continuous and prismatic joints) and floating-base
 quadrupeds and a humanoid; plus tests/data/urdf/planted.urdf, our own small robot that plants
-every classic importer mistake. Each is imported by `triad import` (`--floating-base` for the
+every classic importer mistake, and tests/data/urdf/neck_determined.urdf, a head on two massless
+neck links. Each is imported by `triad import` (`--floating-base` for the
 free ones, with the base's initial pose and twist written into the spec; `--no-limits`, since
 joint stops and effort clamps would change the motion), built into an FMU and run by fmpy; Pinocchio
 loads the same URDF (the root welded to the universe, or on a free-flyer). Compared:
@@ -52,7 +53,8 @@ ENERGY_TOL = 1e-10  # relative to kinetic + |potential|
 FRAME_TOL = 1e-10  # m, 1, m/s, rad/s
 TRAJECTORY_TOL = 1e-6  # rad or m
 
-PLANTED = Path(__file__).resolve().parent.parent / "data" / "urdf" / "planted.urdf"
+DATA = Path(__file__).resolve().parent.parent / "data" / "urdf"
+PLANTED = DATA / "planted.urdf"
 
 FIXED = {
     "ur5": "ur_description/urdf/ur5_robot.urdf",
@@ -78,6 +80,10 @@ FLOATING = {
 CASES = [(name, path, False) for name, path in FIXED.items()]
 CASES += [(name, path, True) for name, path in FLOATING.items()]
 CASES += [("planted", None, False)]
+# our own neck: two massless links under a head whose centre of mass lies 3.7e-7 m off the last
+# axis; with the head's inertia its motion is determined (the point-mass head is refused by
+# `triad check`, tests/determinacy.rs)
+CASES += [("neck_determined", DATA / "neck_determined.urdf", False)]
 
 
 class Robot:
@@ -85,7 +91,12 @@ class Robot:
 
     def __init__(self, triad_bin, tmp_path, case):
         self.name, relative, self.floating = case
-        self.urdf = PLANTED if relative is None else ref.robot_urdf(relative)
+        if relative is None:
+            self.urdf = PLANTED
+        elif isinstance(relative, Path):
+            self.urdf = relative
+        else:
+            self.urdf = ref.robot_urdf(relative)
         self.triad = triad_bin
         self.tmp = tmp_path
         self.model = ref.load_model(self.urdf, self.floating)

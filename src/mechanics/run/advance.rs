@@ -5,6 +5,7 @@
 //! `qₙ, vₙ, … → q_{n+1}, v_{n+1}, …` with the inputs, damping and stiffness held over the step;
 //! `t ← t + h`. On error the state is exactly as before the call.
 
+use crate::mechanics::model::determinacy::diagnose;
 use crate::mechanics::model::runtime::Model;
 use crate::mechanics::step::error::StepError;
 use crate::mechanics::step::stage::{compose, StepStats};
@@ -99,8 +100,20 @@ fn trial(model: &Model, state: &mut State, h: f64) -> Result<StepStats, StepErro
         stiffness: &state.stiffness,
     };
     let mut stats = StepStats::default();
-    compose(model, ws, &held, h, &mut stats)?;
-    Ok(stats)
+    match compose(model, ws, &held, h, &mut stats) {
+        Ok(()) => Ok(stats),
+        Err(error @ (StepError::NoConvergence { .. } | StepError::Singular)) => {
+            // what is known of a failure where the motion is nearly undetermined (cold path)
+            Err(match diagnose(model, &state.q) {
+                Some(detail) => StepError::NearlyUndetermined {
+                    error: Box::new(error),
+                    detail,
+                },
+                None => error,
+            })
+        }
+        Err(e) => Err(e),
+    }
 }
 
 /// Makes the workspace's step (from [`trial`]) the state.

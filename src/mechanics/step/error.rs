@@ -23,6 +23,17 @@ pub enum StepError {
     /// of the named joint (its dampers gave energy over the step).
     #[error("order 4: the backward stage of the composition amplified the damped motion of joint '{0}' (its damping is too stiff for this step: use order 2 or a smaller max_step)")]
     DampingAmplified(String),
+    /// Newton failed ([`StepError::NoConvergence`] or [`StepError::Singular`], the `error`)
+    /// where the motion is nearly undetermined: bodies without mass or inertia whose softest
+    /// motion moves almost no mass. `detail` names them and their joints, estimates the kinetic
+    /// energy of that motion relative to the model's scale, and gives a hint.
+    #[error("{error}; {detail}")]
+    NearlyUndetermined {
+        /// The failure as the iteration saw it.
+        error: Box<StepError>,
+        /// The diagnosis.
+        detail: String,
+    },
     /// Step size not positive and finite.
     #[error("invalid step size {0}")]
     BadStep(f64),
