@@ -68,6 +68,9 @@ pub struct Simulation {
     saved: State,
     /// Whether a clamped actuator input has been reported ([`Simulation::clamp_notice`]).
     clamp_noticed: bool,
+    /// Whether an order-4 step redone at order 2 has been reported
+    /// ([`Simulation::order2_notice`]).
+    order2_noticed: bool,
 }
 
 impl Simulation {
@@ -89,6 +92,7 @@ impl Simulation {
             state,
             saved,
             clamp_noticed: false,
+            order2_noticed: false,
         })
     }
 
@@ -102,6 +106,27 @@ impl Simulation {
         let msg = self.model.clamped_input(self.state.inputs())?;
         self.clamp_noticed = true;
         Some(msg)
+    }
+
+    /// The first time an order-4 step was redone as order-2 stages because a joint's damping
+    /// is too stiff for the step (its backward stage would have fed energy in), a message
+    /// naming the joint; `None` before and ever after. Call it after a communication step.
+    pub fn order2_notice(&mut self) -> Option<String> {
+        let (count, joint) = self.state.order2_steps();
+        if self.order2_noticed || count == 0 {
+            return None;
+        }
+        self.order2_noticed = true;
+        let name = joint
+            .and_then(|j| self.model.def().joints.get(j))
+            .map_or("?", |j| j.name.as_str());
+        Some(format!(
+            "order 4: a step before t = {} was taken as order-2 stages: the damping of joint \
+             '{name}' is too stiff for the step (the composition's backward stage would feed \
+             energy in); such steps stay dissipative and the energy account exact, at order 2. \
+             A smaller solver.max_step keeps order 4",
+            self.state.time()
+        ))
     }
 
     /// The model.

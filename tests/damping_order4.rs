@@ -1,19 +1,18 @@
-//! Order 4 with stiff viscous damping: the triple jump's backward stage (γ₂ h < 0) turns a
-//! damper into an energy source; for a damped rate λ with λh in about 1.13–1.20 that stage
-//! amplifies the motion more than the outer stages damp it. Such a step is refused (the FMU
-//! answers `fmi2Discard`) instead of reporting growing motion as damped; order 2 and smaller
-//! steps integrate the same model.
+//! Order 4 with stiff viscous damping stays dissipative at every λh. The composition's
+//! backward stage (γ₂ h < 0) runs a damper backwards and feeds energy in; for a damped rate λ
+//! with λh near that stage's pole (1.17 for the triple jump, 3.04 for Suzuki's five stages) it
+//! amplifies the mode beyond what the outer stages take. Such a step is redone as order-2
+//! stages (`StepStats::order2`, the joint in `stiff_damper`), whose dampers can only take
+//! energy: over a sweep of λh from 1e-2 to 1e4 the kinetic energy never rises over a step (beyond 1e-12 of
+//! itself, the round-off of the energy exchanged within the step) and `energy − work` stays at
+//! round-off. Where the damping is resolved no step falls back and the
+//! error falls as h⁴.
 
-use triad::mechanics::{step, Model, State, StepError};
+use triad::mechanics::{step, Model, State};
 use triad::spec::{Format, Spec};
 
 /// A disc on a revolute joint, no gravity: J = 1e-4 kg·m², damping c, q̇₀ = 1 rad/s; the rate
 /// decays as exp(−λt), λ = c/J.
-fn disc(c: f64, order: u8, h: f64) -> (Model, State) {
-    disc_with(c, order, 3, h)
-}
-
-/// [`disc`] with the composition's stage count (3: triple jump, 5: Suzuki's).
 fn disc_with(c: f64, order: u8, stages: u8, h: f64) -> (Model, State) {
     let text = format!(
         "name = \"Spin\"\ngravity = [0.0, 0.0, 0.0]\n[solver]\nmax_step = {h}\norder = {order}\nstages = {stages}\n\
@@ -28,76 +27,106 @@ fn disc_with(c: f64, order: u8, stages: u8, h: f64) -> (Model, State) {
     (model, state)
 }
 
-#[test]
-fn an_amplifying_step_is_refused_and_changes_nothing() {
-    // λh = 1.1748 is the pole of the backward stage; across the band the energy grows by 6 % to
-    // 10⁸ per step
-    for lh in [1.15, 1.1748, 1.19] {
-        let (model, mut s) = disc(lh * 0.1, 4, 1e-3);
-        let before = s.clone();
-        let err = step(&model, &mut s, 1e-3).unwrap_err();
-        assert_eq!(
-            err,
-            StepError::DampingAmplified("spin".into()),
-            "λh = {lh}: {err}"
-        );
-        assert!(err
-            .to_string()
-            .contains("use order 2 or a smaller max_step"));
-        assert_eq!(s.outputs(), before.outputs());
-        assert_eq!(s.time(), before.time());
-    }
+/// λh values: 60 per decade from 1e-2 to 1e4, and the two poles.
+fn sweep() -> Vec<f64> {
+    let mut v: Vec<f64> = (0..=360)
+        .map(|k| 10f64.powf(-2.0 + k as f64 / 60.0))
+        .collect();
+    v.extend([1.1748, 3.0397]);
+    v
 }
 
 #[test]
-fn the_same_disc_decays_at_order_2_and_at_smaller_steps() {
-    for (order, h) in [(2, 1e-3), (4, 5e-4), (4, 1e-4)] {
-        let (model, mut s) = disc(0.11748, order, h);
-        let mut last = s.outputs().energy;
-        for _ in 0..(6e-3 / h).round() as usize {
-            step(&model, &mut s, h).unwrap();
-            let e = s.outputs().energy;
-            assert!(e <= last, "order {order} h {h}: energy rose {last} -> {e}");
-            last = e;
-        }
-        let o = s.outputs();
-        let drift = (o.energy - o.work - 5e-5).abs();
-        assert!(
-            drift < 1e-18,
-            "order {order} h {h}: energy - work drift {drift:e}"
-        );
-    }
-}
-
-/// Away from the band, order 4 damps as it should across λh from 0.01 to 1000.
-#[test]
-fn order_4_damps_outside_the_band() {
-    for lh in [0.01, 0.5, 1.0, 1.3, 5.0, 100.0, 1000.0] {
-        let h = 1e-3;
-        let (model, mut s) = disc(lh / h * 1e-4, 4, h);
-        let e0 = s.outputs().energy;
-        for _ in 0..5 {
-            step(&model, &mut s, h).unwrap();
-        }
-        assert!(s.outputs().energy < e0, "λh = {lh}");
-    }
-}
-
-/// Suzuki's five stages (`stages = 5`) have a shorter backward stage (`(1 − 4s) h = −0.657 h`),
-/// so their band lies at λh ≈ 3.023–3.055 (the pole `2/0.657 = 3.04`; the triple jump's
-/// 1.134–1.201): the triple jump's worst case damps, the new band is refused alike.
-#[test]
-fn suzuki_moves_the_band() {
+fn every_step_is_dissipative_at_every_lambda_h() {
     let h = 1e-3;
-    for lh in [1.1748, 1.19, 2.9, 3.2] {
-        let (model, mut s) = disc_with(lh / h * 1e-4, 4, 5, h);
-        let e0 = s.outputs().energy;
-        step(&model, &mut s, h).unwrap();
-        assert!(s.outputs().energy < e0, "λh = {lh}");
+    for stages in [3u8, 5] {
+        let mut fell_back = Vec::new();
+        let mut worst = 0.0f64;
+        for lh in sweep() {
+            let (model, mut s) = disc_with(lh / h * 1e-4, 4, stages, h);
+            let e0 = s.outputs().energy;
+            let mut last = e0;
+            for n in 0..20 {
+                let stats = step(&model, &mut s, h)
+                    .unwrap_or_else(|e| panic!("stages {stages}, λh = {lh}: step {n}: {e}"));
+                if stats.order2 > 0 {
+                    assert_eq!(stats.stiff_damper, Some(0));
+                    fell_back.push(lh);
+                }
+                let e = s.outputs().energy;
+                assert!(
+                    e <= last * (1.0 + 1e-12),
+                    "stages {stages}, λh = {lh}: step {n}: energy rose {last} -> {e}"
+                );
+                last = e;
+            }
+            let o = s.outputs();
+            let drift = (o.energy - o.work - e0).abs();
+            worst = worst.max(drift / e0);
+        }
+        // round-off of the energy exchanged (the backward stage's swing near its pole is
+        // larger than the kinetic energy: measured ≤ 5.3e-14 of it)
+        assert!(
+            worst <= 2e-13,
+            "stages {stages}: E − W drift {worst:e} of E₀"
+        );
+        // the fallback is taken around the backward stage's pole (and only where needed)
+        let pole = if stages == 3 { 1.1748 } else { 3.0397 };
+        assert!(
+            fell_back.iter().any(|&lh| (lh - pole).abs() < 1e-3),
+            "{stages}: {fell_back:?}"
+        );
+        assert!(
+            fell_back.iter().all(|&lh| lh > 0.5 * pole),
+            "stages {stages}: order 2 taken at resolved damping: {fell_back:?}"
+        );
     }
-    for lh in [3.03, 3.0397, 3.05] {
-        let (model, mut s) = disc_with(lh / h * 1e-4, 4, 5, h);
-        let err = step(&model, &mut s, h).unwrap_err();
-        assert_eq!(err, StepError::DampingAmplified("spin".into()), "λh = {lh}");
+}
+
+/// A step in the band reports the fallback, and the state says so (the notices read it).
+#[test]
+fn a_fallback_is_reported() {
+    let h = 1e-3;
+    let (model, mut s) = disc_with(1.1748 / h * 1e-4, 4, 3, h);
+    assert_eq!(s.order2_steps(), (0, None));
+    let stats = step(&model, &mut s, h).unwrap();
+    assert_eq!((stats.order2, stats.stiff_damper), (1, Some(0)));
+    assert_eq!(s.order2_steps(), (1, Some(0)));
+    // the order-2 step of the same size damps the mode exactly as a midpoint step does
+    let (m2, mut s2) = disc_with(1.1748 / h * 1e-4, 2, 3, h / 3.0);
+    for _ in 0..3 {
+        step(&m2, &mut s2, h / 3.0).unwrap();
+    }
+    let rate = |s: &State| s.outputs().joints[0].qd[0];
+    assert!(
+        (rate(&s) - rate(&s2)).abs() <= 1e-14,
+        "{} {}",
+        rate(&s),
+        rate(&s2)
+    );
+}
+
+/// Resolved damping (λh = 0.05 … 0.0125): no fallback, and the error of the angle after 0.1 s
+/// falls as h⁴ (ratio 16 per halving, within 10 %).
+#[test]
+fn resolved_damping_keeps_order_4() {
+    let lambda = 50.0;
+    let exact = |t: f64| (1.0 - (-lambda * t).exp()) / lambda;
+    let mut errors = Vec::new();
+    for h in [1e-3, 5e-4, 2.5e-4] {
+        let (model, mut s) = disc_with(lambda * 1e-4, 4, 3, h);
+        let n = (0.1 / h).round() as usize;
+        for _ in 0..n {
+            let stats = step(&model, &mut s, h).unwrap();
+            assert_eq!(stats.order2, 0, "h = {h}");
+        }
+        errors.push((s.outputs().joints[0].q[0] - exact(0.1)).abs());
+    }
+    for w in errors.windows(2) {
+        let ratio = w[0] / w[1];
+        assert!(
+            (14.4..17.6).contains(&ratio),
+            "error ratio {ratio} ({errors:?})"
+        );
     }
 }

@@ -260,6 +260,9 @@ pub fn run(args: &SimulateArgs) -> Result<(), CliError> {
                     args.model, e.last_good_time, e.error
                 )
             })?;
+            if let Some(msg) = sim.order2_notice() {
+                bar.suspend(|| eprintln!("note: {msg}"));
+            }
             if end == target {
                 break;
             }
@@ -268,6 +271,9 @@ pub fn run(args: &SimulateArgs) -> Result<(), CliError> {
         bar.inc(1);
     }
     bar.finish_and_clear();
+    if let (n @ 2.., _) = sim.state().order2_steps() {
+        eprintln!("note: order 4: {n} steps in all were taken as order-2 stages (stiff damping)");
+    }
     if let Some(path) = &args.plot {
         let png = AtomicFile::new(path);
         plot::draw(png.path(), &spec.name, &series)

@@ -405,7 +405,11 @@ impl Instance {
         let clamped = sim.clamp_notice();
         let result = sim.advance(h);
         let now = sim.time();
+        let order2 = sim.order2_notice();
         if let Some(msg) = clamped {
+            self.log(Status::Warning, Category::LogStatusWarning, &msg);
+        }
+        if let Some(msg) = order2 {
             self.log(Status::Warning, Category::LogStatusWarning, &msg);
         }
         match result {

@@ -8,7 +8,7 @@
 use crate::mechanics::model::determinacy::diagnose;
 use crate::mechanics::model::runtime::Model;
 use crate::mechanics::step::error::StepError;
-use crate::mechanics::step::stage::{compose, StepStats};
+use crate::mechanics::step::stage::{compose, Composed, Plan, StepStats};
 use crate::mechanics::step::work::Held;
 
 use super::control::{above_floor, Verdict};
@@ -36,7 +36,7 @@ pub fn step(model: &Model, state: &mut State, h: f64) -> Result<StepStats, StepE
 /// [`StepError`] when Newton fails, a value is not finite, or `h` is not positive.
 pub fn step_state(model: &Model, state: &mut State, h: f64) -> Result<StepStats, StepError> {
     let stats = trial(model, state, h)?;
-    commit(state, h);
+    commit(state, h, &stats);
     Ok(stats)
 }
 
@@ -51,7 +51,7 @@ pub fn step_state(model: &Model, state: &mut State, h: f64) -> Result<StepStats,
 /// # Errors
 /// As [`step_state`]; the state is then unchanged.
 pub fn controlled_step(model: &Model, state: &mut State, h: f64) -> Result<Verdict, StepError> {
-    trial(model, state, h)?;
+    let stats = trial(model, state, h)?;
     let verdict = state.ctrl.judge(model, &state.q, &state.ws, h);
     if verdict == Verdict::Accept {
         let ws = &state.ws;
@@ -60,7 +60,7 @@ pub fn controlled_step(model: &Model, state: &mut State, h: f64) -> Result<Verdi
                 return Ok(Verdict::Land(theta * h));
             }
         }
-        commit(state, h);
+        commit(state, h, &stats);
         // the commit swapped the step's start into the workspace
         state.ctrl.record(&state.ws.qn, h);
     }
@@ -84,6 +84,39 @@ fn trial(model: &Model, state: &mut State, h: f64) -> Result<StepStats, StepErro
     {
         return Err(StepError::NonFinite("damping or stiffness"));
     }
+    let mut stats = StepStats::default();
+    let mut outcome = compose_from(model, state, h, Plan::Configured, &mut stats);
+    if let Ok(Composed::FedEnergy(j)) = outcome {
+        // a damper fed energy in through the backward stage: the step at order 2 (stage docs)
+        let stages = model.settings().stages.max(3) as usize;
+        stats.order2 = 1;
+        stats.stiff_damper = Some(j);
+        outcome = compose_from(model, state, h, Plan::Midpoint(stages), &mut stats);
+    }
+    match outcome {
+        Ok(_) => Ok(stats),
+        Err(error @ (StepError::NoConvergence { .. } | StepError::Singular)) => {
+            // what is known of a failure where the motion is nearly undetermined (cold path)
+            Err(match diagnose(model, &state.q) {
+                Some(detail) => StepError::NearlyUndetermined {
+                    error: Box::new(error),
+                    detail,
+                },
+                None => error,
+            })
+        }
+        Err(e) => Err(e),
+    }
+}
+
+/// The step of size `h` composed as `plan` says, from the state into its workspace.
+fn compose_from(
+    model: &Model,
+    state: &mut State,
+    h: f64,
+    plan: Plan,
+    stats: &mut StepStats,
+) -> Result<Composed, StepError> {
     let ws = &mut state.ws;
     ws.qn.copy_from_slice(&state.q);
     ws.vn.copy_from_slice(&state.v);
@@ -99,25 +132,15 @@ fn trial(model: &Model, state: &mut State, h: f64) -> Result<StepStats, StepErro
         damping: &state.damping,
         stiffness: &state.stiffness,
     };
-    let mut stats = StepStats::default();
-    match compose(model, ws, &held, h, &mut stats) {
-        Ok(()) => Ok(stats),
-        Err(error @ (StepError::NoConvergence { .. } | StepError::Singular)) => {
-            // what is known of a failure where the motion is nearly undetermined (cold path)
-            Err(match diagnose(model, &state.q) {
-                Some(detail) => StepError::NearlyUndetermined {
-                    error: Box::new(error),
-                    detail,
-                },
-                None => error,
-            })
-        }
-        Err(e) => Err(e),
-    }
+    compose(model, ws, &held, h, plan, stats)
 }
 
-/// Makes the workspace's step (from [`trial`]) the state.
-fn commit(state: &mut State, h: f64) {
+/// Makes the workspace's step (from [`trial`], with its `stats`) the state.
+fn commit(state: &mut State, h: f64, stats: &StepStats) {
+    if stats.order2 > 0 {
+        state.order2.0 += 1;
+        state.order2.1 = state.order2.1.or(stats.stiff_damper);
+    }
     let ws = &mut state.ws;
     // commit by swapping buffers of equal length (the workspace's copies are overwritten at
     // the start of the next step)

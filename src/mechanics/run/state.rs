@@ -41,6 +41,10 @@ pub struct State {
     pub(crate) damping: Vec<f64>,
     pub(crate) stiffness: Vec<f64>,
     pub(crate) outputs: Outputs,
+    /// Steps of this run that an order-4 composition redid as order-2 stages (a stiff damper,
+    /// `step::stage`), and the joint of the first; a tally for notices, not part of the
+    /// snapshot (it does not change what follows).
+    pub(crate) order2: (u64, Option<usize>),
     /// Newton workspace (not part of the snapshot).
     pub(crate) ws: Work,
     /// Output-velocity projection workspace (not part of the snapshot).
@@ -69,6 +73,7 @@ impl State {
             damping: def.joints.iter().map(|j| j.damping).collect(),
             stiffness: def.joints.iter().map(|j| j.stiffness).collect(),
             outputs: Outputs::for_model(model),
+            order2: (0, None),
             ws: Work::new(model),
             pw: ProjWork::new(model),
         };
@@ -197,6 +202,14 @@ impl State {
         self.inputs.clone_from(&src.inputs);
         self.damping.clone_from(&src.damping);
         self.stiffness.clone_from(&src.stiffness);
+    }
+
+    /// How many steps of this run an order-4 composition redid as order-2 stages because a
+    /// joint's damping was too stiff for the step (its backward stage would have fed energy
+    /// in), and the model's index of the joint of the first such step.
+    #[must_use]
+    pub fn order2_steps(&self) -> (u64, Option<usize>) {
+        self.order2
     }
 
     /// Test-only: forgets the predictor's history and the iteration's memory, as after

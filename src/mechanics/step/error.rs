@@ -19,10 +19,6 @@ pub enum StepError {
     /// A NaN or infinity appeared (inputs or state).
     #[error("non-finite value in {0}")]
     NonFinite(&'static str),
-    /// Order 4 only: the backward stage of the composition amplified a stiffly damped motion
-    /// of the named joint (its dampers gave energy over the step).
-    #[error("order 4: the backward stage of the composition amplified the damped motion of joint '{0}' (its damping is too stiff for this step: use order 2 or a smaller max_step)")]
-    DampingAmplified(String),
     /// Newton failed ([`StepError::NoConvergence`] or [`StepError::Singular`], the `error`)
     /// where the motion is nearly undetermined: bodies without mass or inertia whose softest
     /// motion moves almost no mass. `detail` names them and their joints, estimates the kinetic

@@ -84,8 +84,8 @@ pub(crate) fn balanced(model: &Model, ws: &Work, held: &Held, h: f64) -> bool {
 /// increment and the joint angles read through the reciprocal midpoint basis grow as
 /// `1/|d̄ᵢ|`, at π the projection loses rank. (A floating tree under random torques at
 /// h = 0.05, order 4, `tests/floating_base.rs`: a light child turned 2.6 rad within a stage;
-/// taken, the step's damper account gave back 0.42 J of 6.4 J kinetic energy and the step was
-/// refused as `DampingAmplified`; halved, the run keeps `E − W` within 2.5e-14.)
+/// taken, the step's damper account gave back 0.42 J of 6.4 J kinetic energy; halved, the run
+/// keeps `E − W` within 2.5e-14.)
 pub(crate) const COLLAPSED: f64 = 0.1;
 
 /// `|d̄ᵢ|²` below which a stage's identity is checked (`cos²(α/2)` at α ≈ 37°): only
