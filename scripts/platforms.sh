@@ -62,12 +62,16 @@ if [ ! -x "$TOOLS/bin/cargo-zigbuild" ] || ! printf '%s\n' "${PIP_PINS[@]}" | cm
   "$TOOLS/bin/pip" install -q "${PIP_PINS[@]}"
   printf '%s\n' "${PIP_PINS[@]}" > "$TOOLS/.pins"
 fi
+# zig and cargo-zigbuild alone in one folder, so that it can go before /usr/bin
+ZIGBIN=$ROOT/target/platforms/bin
+mkdir -p "$ZIGBIN"
+ln -sf "$("$TOOLS/bin/python" -c 'import ziglang, os; print(os.path.dirname(ziglang.__file__))')/zig" "$ZIGBIN/zig"
+ln -sf "$TOOLS/bin/cargo-zigbuild" "$ZIGBIN/cargo-zigbuild"
 echo "platforms: toolchains ready ($(( $(stamp) - T0 )) s)"
 
-# cargo-zigbuild finds zig as `python3 -m ziglang` through the venv's python
-ZIGPATH=$TOOLS/bin:$PATH
+ZIGPATH=$ZIGBIN:$PATH
 # Debian's rustc 1.96 and its library source, for the targets rustup cannot fetch here
-DEBPATH=/usr/bin:$TOOLS/bin:$PATH
+DEBPATH=$ZIGBIN:/usr/bin:$PATH
 COMMON=(rustc --lib --crate-type cdylib --no-default-features --profile fmu --locked)
 BUILD_STD=(-Zbuild-std=std,panic_unwind)
 

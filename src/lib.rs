@@ -18,6 +18,8 @@ pub mod math;
 pub mod mechanics;
 #[cfg(feature = "tools")]
 pub mod package;
+#[cfg(feature = "tools")]
+pub mod platforms;
 pub mod sim;
 pub mod spec;
 #[cfg(feature = "tools")]
