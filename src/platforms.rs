@@ -81,7 +81,6 @@ pub fn find_cdylib() -> Result<PathBuf, String> {
     ))
 }
 
-
 /// A platform of the runtime directory (and of `triad build --platforms`).
 #[derive(Clone, Copy, Debug, PartialEq, Eq, PartialOrd, Ord)]
 pub enum Platform {
@@ -99,7 +98,12 @@ pub enum Platform {
 
 impl Platform {
     /// What `--platforms all` packs.
-    pub const ALL: [Self; 4] = [Self::Linux64, Self::Win64, Self::Darwin64, Self::Aarch64Linux];
+    pub const ALL: [Self; 4] = [
+        Self::Linux64,
+        Self::Win64,
+        Self::Darwin64,
+        Self::Aarch64Linux,
+    ];
     /// Every name `--platforms` accepts.
     pub const NAMES: [Self; 5] = [
         Self::Linux64,
@@ -246,13 +250,21 @@ pub fn runtime_dir() -> Option<PathBuf> {
     }
     let exe = std::env::current_exe().ok()?;
     let dir = exe.parent()?;
-    [Some(dir.join("runtime")), dir.parent().map(|p| p.join("runtime"))]
-        .into_iter()
-        .flatten()
-        .find(|d| d.is_dir())
+    [
+        Some(dir.join("runtime")),
+        dir.parent().map(|p| p.join("runtime")),
+    ]
+    .into_iter()
+    .flatten()
+    .find(|d| d.is_dir())
 }
 
-fn read(platform: Option<Platform>, folder: &str, ext: &'static str, path: &Path) -> Result<Binary, String> {
+fn read(
+    platform: Option<Platform>,
+    folder: &str,
+    ext: &'static str,
+    path: &Path,
+) -> Result<Binary, String> {
     let bytes = std::fs::read(path).map_err(|e| format!("{}: {e}", path.display()))?;
     let label = platform.map_or_else(
         || format!("{folder} (this build)"),
@@ -287,7 +299,10 @@ fn missing(p: Platform, dir: Option<&Path>) -> String {
 /// # Errors
 /// A platform asked for (`all` or a list) but not found, two platforms asked for that share a
 /// folder, a host library that cannot be found or read.
-pub fn collect(selection: &Selection, dir: Option<&Path>) -> Result<(Vec<Binary>, Vec<String>), String> {
+pub fn collect(
+    selection: &Selection,
+    dir: Option<&Path>,
+) -> Result<(Vec<Binary>, Vec<String>), String> {
     let mut notes = Vec::new();
     let asked: Vec<Platform> = match selection {
         Selection::Found => Platform::ALL
@@ -313,7 +328,10 @@ pub fn collect(selection: &Selection, dir: Option<&Path>) -> Result<(Vec<Binary>
     let mut out: Vec<Binary> = Vec::new();
     // the host's binary: explicit TRIAD_CDYLIB, the runtime directory's, this build's
     let host_folder = host.map_or(PLATFORM, Platform::folder);
-    let replaced = explicit && asked.iter().any(|p| p.folder() == host_folder && Some(*p) != host);
+    let replaced = explicit
+        && asked
+            .iter()
+            .any(|p| p.folder() == host_folder && Some(*p) != host);
     if replaced {
         notes.push(format!(
             "the host's binary is not packed: binaries/{host_folder} holds the platform asked for"
@@ -368,7 +386,10 @@ mod tests {
             Ok(Selection::List(vec![Platform::Win64, Platform::Darwin64]))
         );
         let e = Selection::parse("win64,win32").unwrap_err();
-        assert!(e.contains("'win32'") && e.contains("linux64-aarch64"), "{e}");
+        assert!(
+            e.contains("'win32'") && e.contains("linux64-aarch64"),
+            "{e}"
+        );
         assert!(Selection::parse("").is_err());
         assert_eq!(Platform::Linux64Aarch64.folder(), "linux64");
         assert_eq!(Platform::Linux64Aarch64.runtime(), "aarch64-linux");
@@ -392,7 +413,10 @@ mod tests {
         let e = collect(&Selection::List(vec![Platform::Darwin64]), Some(&dir));
         if host != Platform::Darwin64 {
             let e = e.unwrap_err();
-            assert!(e.contains("bash scripts/platforms.sh --only darwin64"), "{e}");
+            assert!(
+                e.contains("bash scripts/platforms.sh --only darwin64"),
+                "{e}"
+            );
             let e = collect(&Selection::All, Some(&dir)).unwrap_err();
             assert!(e.contains("--only"), "{e}");
             let e = collect(&Selection::All, None).unwrap_err();

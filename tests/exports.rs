@@ -113,7 +113,9 @@ fn no_glibc_symbol_above_the_floor() {
     let highest = highest_glibc(&path);
     match std::env::var("TRIAD_GLIBC_FLOOR") {
         Ok(floor) => {
-            let mut it = floor.split('.').map(|x| x.parse::<u32>().expect("TRIAD_GLIBC_FLOOR"));
+            let mut it = floor
+                .split('.')
+                .map(|x| x.parse::<u32>().expect("TRIAD_GLIBC_FLOOR"));
             let floor = (it.next().unwrap(), it.next().unwrap_or(0));
             assert!(
                 highest <= floor,

@@ -7,8 +7,10 @@ target/runtime), checked without running it:
   DLLs (no libgcc_s, libwinpthread or libstdc++);
 - darwin64: one universal file with an x86_64 and an arm64 slice, each exporting exactly the 34
   functions (the C names with Mach-O's leading underscore), loading only libSystem, minimum
-  macOS 10.12 (x86_64) and 11.0 (arm64), install name @rpath/libtriad.dylib, and an ad-hoc
-  signature whose every page hash is recomputed here (macho.py).
+  macOS 10.12 (x86_64) and 11.0 (arm64), install name @rpath/libtriad.dylib, and on arm64 (which
+  refuses unsigned code; zig's linker signs it) an ad-hoc signature whose every page hash is
+  recomputed here (macho.py). Besides the fmi2* functions zig's linker exports four symbols it
+  cannot be told to hide (DARWIN_EXTRA).
 
 Run by .ci/run with the platform tools' python: `python -m pytest tests/platforms`.
 """
@@ -33,6 +35,15 @@ SYSTEM_DLLS = {
     "kernel32.dll", "ntdll.dll", "msvcrt.dll", "bcryptprimitives.dll", "advapi32.dll",
     "ws2_32.dll", "userenv.dll", "bcrypt.dll", "api-ms-win-core-synch-l1-2-0.dll",
 }
+
+
+# What zig's Mach-O linker exports besides the fmi2* functions (it ignores export lists; fat LTO
+# hides every other Rust symbol): the image header and DSO handle every dylib has, and one
+# constant of Rust's standard library.
+DARWIN_EXTRA = re.compile(
+    r"^(__mh_dylib_header|___dso_handle|_rust_eh_personality"
+    r"|__RNvNtCs\w+_3std9panicking11EMPTY_PANIC)$"
+)
 
 
 def test_the_fmi2_list_is_the_34_functions():
@@ -91,13 +102,17 @@ def test_darwin64_universal():
     cpus = sorted(s["cpu"] for s in info["slices"])
     assert cpus == ["arm64", "x86_64"], cpus
     for s in info["slices"]:
-        assert s["exports"] == ["_" + f for f in FMI2], (s["cpu"], s["exports"][:40])
+        fmi = [e for e in s["exports"] if not DARWIN_EXTRA.match(e)]
+        assert fmi == ["_" + f for f in FMI2], (s["cpu"], s["exports"][:40])
+        assert len(s["exports"]) - len(fmi) <= 4, s["exports"]
         assert s["dylibs"] == ["/usr/lib/libSystem.B.dylib"], s["dylibs"]
         assert s["install_name"] == "@rpath/libtriad.dylib", s["install_name"]
         want = "11.0" if s["cpu"] == "arm64" else "10.12"
         assert s["minos"] == want, (s["cpu"], s["minos"])
         sig = s["signature"]
-        assert sig is not None, f"{s['cpu']}: no code signature"
+        if s["cpu"] == "x86_64" and sig is None:
+            continue  # Intel macOS loads unsigned code; zig's linker signs arm64 only
+        assert sig is not None, f"{s['cpu']}: no code signature (arm64 macOS refuses unsigned code)"
         assert sig["ok"], (s["cpu"], sig)
         assert sig["adhoc"], (s["cpu"], sig)
 
