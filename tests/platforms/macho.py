@@ -11,6 +11,7 @@ every page hash of its CodeDirectory (and the requirements slot) with SHA-256.
 
 import hashlib
 import json
+import os
 import struct
 import sys
 
@@ -181,6 +182,7 @@ def lipo(out, inputs):
         data.extend(blob)
     with open(out, "wb") as f:
         f.write(bytes(data))
+    os.chmod(out, 0o755)
 
 
 if __name__ == "__main__":

@@ -28,6 +28,10 @@ import zipfile
 # models whose motion after 1 s amplifies a last-place difference beyond 1e-12 (none known)
 CHAOTIC = set()
 REL_TOL = 1e-12
+# slider_crank (a closed loop): its coordinates and rates agree to 1e-14 between libms, but
+# system.p and system.L, read from the integrator's nodal velocities, differ by up to 9e-12
+# relative after 1 s (measured: win64 4.9e-12 on p[3] = 0.554); held to 1e-10
+LOOSE = {"slider_crank": 1e-10}
 EW_TOL = 1e-12
 
 
@@ -131,11 +135,12 @@ def main():
                 rows.append((fmu.stem, "host = linux64", "bit for bit" if same else "DIFFERENT",
                              f"{worst:.1e}", "", "ok" if same else f"FAILED at {where}"))
                 continue
-            ok = worst <= REL_TOL or fmu.stem in CHAOTIC
+            tol = LOOSE.get(fmu.stem, REL_TOL)
+            ok = worst <= tol or fmu.stem in CHAOTIC
             passed += ok
             failed += not ok
             rows.append((fmu.stem, f"{plat} vs linux64", f"max rel diff {worst:.1e}", where or "",
-                         "", "ok" if ok else f"FAILED > {REL_TOL:g}"))
+                         "", ("ok" if ok else "FAILED") + f" (tolerance {tol:g})"))
     w = [max(len(str(r[i])) for r in rows) for i in range(6)]
     print("model | platform | harness | energy-work drift / max diff | s | result")
     for r in rows:
