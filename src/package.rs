@@ -124,7 +124,7 @@ pub fn fmu_bytes_at(
     let host = Binary {
         folder: PLATFORM.to_string(),
         ext,
-        label: format!("{PLATFORM} (this build)"),
+        label: platforms::label(platforms::Platform::host(), PLATFORM),
         source: PathBuf::new(),
         bytes: cdylib.to_vec(),
     };

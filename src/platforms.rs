@@ -266,10 +266,7 @@ fn read(
     path: &Path,
 ) -> Result<Binary, String> {
     let bytes = std::fs::read(path).map_err(|e| format!("{}: {e}", path.display()))?;
-    let label = platform.map_or_else(
-        || format!("{folder} (this build)"),
-        |p| format!("{} ({})", p.name(), p.describe()),
-    );
+    let label = label(platform, folder);
     Ok(Binary {
         folder: folder.to_string(),
         ext,
