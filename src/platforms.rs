@@ -259,6 +259,15 @@ pub fn runtime_dir() -> Option<PathBuf> {
     .find(|d| d.is_dir())
 }
 
+/// How the documentation names a binary: the platform and what it runs on.
+#[must_use]
+pub fn label(platform: Option<Platform>, folder: &str) -> String {
+    platform.map_or_else(
+        || format!("{folder} (this build)"),
+        |p| format!("{} ({})", p.name(), p.describe()),
+    )
+}
+
 fn read(
     platform: Option<Platform>,
     folder: &str,
