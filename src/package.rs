@@ -1,12 +1,15 @@
 //! `triad build`: the .fmu archive (FMI 2.0.4 §2.3). Entries, in sorted order:
-//! `binaries/<platform>/<modelIdentifier>.so` (the crate's own cdylib — one library serves every
-//! model), `documentation/index.html` (generated variable list), `documentation/scene.html` (the
+//! `binaries/<platform>/<modelIdentifier>.<so|dll|dylib>` (the crate's own cdylib, one per
+//! platform packed — one library serves every model; see [`crate::platforms`]),
+//! `documentation/index.html` (generated variable list and the platforms packed), `documentation/scene.html` (the
 //! model in its initial pose, in the 3-D viewer: a tool that shows the documentation shows the
 //! robot), `modelDescription.xml`,
 //! `resources/model.json` (canonical spec JSON, read by `fmi2Instantiate`). Deterministic: fixed
 //! 1980-01-01 timestamps, fixed permissions, deflate — the same input gives the same bytes.
 
 use crate::fmu::contract::{self, Spec};
+use crate::platforms::{self, Binary, Selection};
+pub use crate::platforms::{cdylib_names, find_cdylib, PLATFORM};
 use crate::sim::Simulation;
 use crate::variables::{read_state, Causality, VariableTable};
 use crate::viewer::{self, Recording, ResultTable};
@@ -18,68 +21,6 @@ use std::path::{Path, PathBuf};
 use zip::write::SimpleFileOptions;
 use zip::{CompressionMethod, DateTime, ZipWriter};
 
-/// FMI platform folder of this build (`linux64`, `win64`, `darwin64`, …).
-pub const PLATFORM: &str = env!("TRIAD_FMI_PLATFORM");
-
-/// File name of the crate's cdylib and the shared-library extension of this platform.
-#[must_use]
-pub fn cdylib_names() -> (&'static str, &'static str) {
-    if cfg!(windows) {
-        ("triad.dll", "dll")
-    } else if cfg!(target_os = "macos") {
-        ("libtriad.dylib", "dylib")
-    } else {
-        ("libtriad.so", "so")
-    }
-}
-
-/// Finds the compiled cdylib: `$TRIAD_CDYLIB`, else the newest of those next to the running
-/// executable, in its parent directory and in their `deps/` directories (covers `target/<profile>/triad`, test binaries
-/// in `target/<profile>/deps/` and examples).
-///
-/// # Errors
-/// A message listing the places searched.
-pub fn find_cdylib() -> Result<PathBuf, String> {
-    if let Some(p) = std::env::var_os("TRIAD_CDYLIB") {
-        let p = PathBuf::from(p);
-        return if p.is_file() {
-            Ok(p)
-        } else {
-            Err(format!("TRIAD_CDYLIB={} is not a file", p.display()))
-        };
-    }
-    let exe = std::env::current_exe()
-        .map_err(|e| format!("cannot locate the running executable: {e}"))?;
-    let dir = exe.parent().ok_or("executable has no directory")?;
-    let (file, _) = cdylib_names();
-    let mut tried = Vec::new();
-    let mut found: Option<(std::time::SystemTime, PathBuf)> = None;
-    let up = dir.parent().map(Path::to_path_buf);
-    let candidates = [
-        Some(dir.to_path_buf()),
-        Some(dir.join("deps")),
-        up.clone(),
-        up.map(|u| u.join("deps")),
-    ];
-    for d in candidates.into_iter().flatten() {
-        let p = d.join(file);
-        // the newest candidate wins: cargo only copies the library up on `cargo build --lib`
-        if let Ok(modified) = p.metadata().and_then(|m| m.modified()) {
-            if found.as_ref().is_none_or(|(t, _)| modified > *t) {
-                found = Some((modified, p.clone()));
-            }
-        }
-        tried.push(p.display().to_string());
-    }
-    if let Some((_, p)) = found {
-        return Ok(p);
-    }
-    Err(format!(
-        "{file} not found (looked at {}); build it with `cargo build --lib` or set TRIAD_CDYLIB",
-        tried.join(", ")
-    ))
-}
-
 fn escape(s: &str) -> String {
     s.replace('&', "&amp;")
         .replace('<', "&lt;")
@@ -87,9 +28,10 @@ fn escape(s: &str) -> String {
         .replace('"', "&quot;")
 }
 
-/// The generated `documentation/index.html`: model description and the variable table.
+/// The generated `documentation/index.html`: model description, the platforms whose binaries
+/// the FMU carries (`platforms`: folder and what it runs on) and the variable table.
 #[must_use]
-pub fn documentation(meta: &Meta, table: &VariableTable) -> String {
+pub fn documentation(meta: &Meta, table: &VariableTable, platforms: &[(String, String)]) -> String {
     let mut h = String::new();
     let _ = write!(
         h,
@@ -99,6 +41,16 @@ pub fn documentation(meta: &Meta, table: &VariableTable) -> String {
         crate::xml::GENERATION_TOOL,
         escape(&meta.guid)
     );
+    h.push_str("<h2>Platforms</h2>\n<table>\n<tr><th>binaries/</th><th>runs on</th></tr>\n");
+    for (folder, what) in platforms {
+        let _ = writeln!(
+            h,
+            "<tr><td><code>{}</code></td><td>{}</td></tr>",
+            escape(folder),
+            escape(what)
+        );
+    }
+    h.push_str("</table>\n");
     for (title, causality) in [
         ("Inputs", Causality::Input),
         ("Outputs", Causality::Output),
@@ -150,7 +102,8 @@ pub fn scene(spec: &Spec, model_dir: Option<&Path>) -> Option<String> {
     Some(viewer::replay(spec, model_dir, &recording, &viewer::Options::default()).html)
 }
 
-/// The .fmu archive of `spec` with the shared library `cdylib` (its bytes), deterministic.
+/// The .fmu archive of `spec` with the shared library `cdylib` (its bytes) for this build's
+/// platform ([`PLATFORM`]), deterministic.
 ///
 /// # Errors
 /// A spec that does not lower, or a zip error.
@@ -167,24 +120,50 @@ pub fn fmu_bytes_at(
     model_dir: Option<&Path>,
     cdylib: &[u8],
 ) -> Result<Vec<u8>, Box<dyn Error>> {
+    let (_, ext) = cdylib_names();
+    let host = Binary {
+        folder: PLATFORM.to_string(),
+        ext,
+        label: platforms::label(platforms::Platform::host(), PLATFORM),
+        source: PathBuf::new(),
+        bytes: cdylib.to_vec(),
+    };
+    fmu_bytes_for(spec, model_dir, &[host])
+}
+
+/// The .fmu archive of `spec` carrying every binary of `binaries` (one `modelDescription.xml`
+/// and one GUID for all), deterministic: the same inputs give the same bytes.
+///
+/// # Errors
+/// A spec that does not lower, two binaries for one folder, or a zip error.
+pub fn fmu_bytes_for(
+    spec: &Spec,
+    model_dir: Option<&Path>,
+    binaries: &[Binary],
+) -> Result<Vec<u8>, Box<dyn Error>> {
     let (def, settings) = spec.lower()?;
     let table = contract::table(spec, &def, &settings);
     let meta = Meta::new(spec, &settings, &table);
     let xml = write_model_description(&table, &meta)?;
-    let (_, ext) = cdylib_names();
+    let platforms: Vec<(String, String)> = binaries
+        .iter()
+        .map(|b| (b.folder.clone(), b.label.clone()))
+        .collect();
     let mut entries: Vec<(String, Vec<u8>, u32)> = vec![
         (
-            format!("binaries/{PLATFORM}/{}.{ext}", spec.name),
-            cdylib.to_vec(),
-            0o755,
-        ),
-        (
             "documentation/index.html".into(),
-            documentation(&meta, &table).into_bytes(),
+            documentation(&meta, &table, &platforms).into_bytes(),
             0o644,
         ),
         ("modelDescription.xml".into(), xml.into_bytes(), 0o644),
     ];
+    for b in binaries {
+        let name = format!("binaries/{}/{}.{}", b.folder, spec.name, b.ext);
+        if entries.iter().any(|e| e.0 == name) {
+            return Err(format!("two binaries for {name}").into());
+        }
+        entries.push((name, b.bytes.clone(), 0o755));
+    }
     if let Some(html) = scene(spec, model_dir) {
         entries.push(("documentation/scene.html".into(), html.into_bytes(), 0o644));
     }
@@ -232,15 +211,44 @@ pub fn build_fmu_from(
     model_dir: Option<&Path>,
     out: &Path,
 ) -> Result<PathBuf, Box<dyn Error>> {
-    let lib = find_cdylib()?;
-    let bytes = fmu_bytes_at(
-        spec,
-        model_dir,
-        &std::fs::read(&lib).map_err(|e| format!("{}: {e}", lib.display()))?,
-    )?;
+    build_fmu_for(spec, model_dir, out, &Selection::Found).map(|b| b.path)
+}
+
+/// What [`build_fmu_for`] wrote.
+#[derive(Debug)]
+pub struct Built {
+    /// The FMU written.
+    pub path: PathBuf,
+    /// The binaries packed: (folder under `binaries/`, platform and what it runs on, source file).
+    pub packed: Vec<(String, String, PathBuf)>,
+    /// Platforms left out, and why.
+    pub notes: Vec<String>,
+}
+
+/// Writes the FMU of `spec` to `out` with the binaries `selection` asks for, found in the
+/// runtime directory ([`platforms::runtime_dir`]); the host's binary is always packed.
+///
+/// # Errors
+/// A platform asked for but not found (the message names the command that builds it), the
+/// spec, I/O errors.
+pub fn build_fmu_for(
+    spec: &Spec,
+    model_dir: Option<&Path>,
+    out: &Path,
+    selection: &Selection,
+) -> Result<Built, Box<dyn Error>> {
+    let (binaries, notes) = platforms::collect(selection, platforms::runtime_dir().as_deref())?;
+    let bytes = fmu_bytes_for(spec, model_dir, &binaries)?;
     if let Some(dir) = out.parent().filter(|d| !d.as_os_str().is_empty()) {
         std::fs::create_dir_all(dir)?;
     }
     std::fs::write(out, bytes).map_err(|e| format!("{}: {e}", out.display()))?;
-    Ok(out.to_path_buf())
+    Ok(Built {
+        path: out.to_path_buf(),
+        packed: binaries
+            .into_iter()
+            .map(|b| (b.folder, b.label, b.source))
+            .collect(),
+        notes,
+    })
 }

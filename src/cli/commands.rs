@@ -103,7 +103,11 @@ pub fn describe(model: &str) -> Result<(), CliError> {
 }
 
 /// Validates MODEL, then packages its FMU.
-pub fn build(model: &Path, output: Option<&Path>) -> Result<(), CliError> {
+pub fn build(model: &Path, output: Option<&Path>, platforms: Option<&str>) -> Result<(), CliError> {
+    let selection = match platforms {
+        Some(text) => triad::platforms::Selection::parse(text)?,
+        None => triad::platforms::Selection::Found,
+    };
     if !model.exists() && model.extension().is_none() {
         let name = model.display();
         if triad::spec::bundled()
@@ -131,9 +135,18 @@ pub fn build(model: &Path, output: Option<&Path>) -> Result<(), CliError> {
         || PathBuf::from(format!("{}.fmu", spec.name)),
         Path::to_path_buf,
     );
-    let written = triad::package::build_fmu_from(&spec, model.parent(), &out)
+    let built = triad::package::build_fmu_for(&spec, model.parent(), &out, &selection)
         .map_err(|e| format!("{}: {e}", model.display()))?;
-    println!("wrote {}", written.display());
+    for (folder, label, source) in &built.packed {
+        println!(
+            "packed binaries/{folder}: {label}, from {}",
+            source.display()
+        );
+    }
+    for note in &built.notes {
+        println!("note: {note}");
+    }
+    println!("wrote {}", built.path.display());
     Ok(())
 }
 

@@ -48,13 +48,31 @@ pub enum Command {
     /// places the bodies from their recorded poses, with play/pause, time slider, speed, loop,
     /// orbit/pan/zoom, frames, sites, a trace and a panel of joint angles and energy - work.
     Animate(animate::AnimateArgs),
-    /// Package an FMI 2.0 Co-Simulation FMU for MODEL.
+    /// Package an FMI 2.0 Co-Simulation FMU for MODEL, with the runtime binary of every
+    /// platform found (one modelDescription.xml and one GUID for all).
+    ///
+    /// The binaries are read from the runtime directory: $TRIAD_RUNTIME_DIR, else runtime/
+    /// beside the triad executable, else ../runtime/ (target/runtime/ for target/release/triad),
+    /// as <platform>/<file>: linux64/libtriad.so (x86_64 Linux, glibc >= 2.17), win64/triad.dll,
+    /// darwin64/libtriad.dylib (macOS x86_64 >= 10.12 + arm64 >= 11.0) and
+    /// aarch64-linux/libtriad.so (glibc >= 2.17). `bash scripts/platforms.sh` builds them. The
+    /// host's binary is always packed ($TRIAD_CDYLIB, else the runtime directory's, else the
+    /// library of this build). The command prints what it packed.
     Build {
         /// Model spec (.toml or .json) or robot description (.urdf).
         model: PathBuf,
         /// Output file (default: <name>.fmu in the current directory).
         #[arg(short, long, value_name = "OUT.fmu")]
         output: Option<PathBuf>,
+        /// Which platforms to pack (default: every one found). `all`: linux64, win64, darwin64
+        /// and aarch64-linux, each required; `host`: only this machine's; or a comma-separated
+        /// list of linux64, win64, darwin64, aarch64-linux (binaries/aarch64-linux, the FMI 3
+        /// folder, which FMI 2 importers ignore) and linux64-aarch64 (the aarch64 binary in
+        /// binaries/linux64, where FMI 2 importers on ARM Linux look: an FMU for ARM boards,
+        /// without the x86_64 Linux binary). A platform asked for but not found is an error
+        /// that names the command building it.
+        #[arg(long, value_name = "all|host|LIST")]
+        platforms: Option<String>,
     },
     /// Write the model spec equivalent to a URDF (editable TOML; building from either gives
     /// the same FMU). The root link is as the URDF says (a `world` link with a fixed joint:
@@ -91,7 +109,11 @@ pub fn run(cli: Cli) -> ExitCode {
         Command::Describe { model } => commands::describe(&model),
         Command::Simulate(args) => simulate::run(&args),
         Command::Animate(args) => animate::run(&args),
-        Command::Build { model, output } => commands::build(&model, output.as_deref()),
+        Command::Build {
+            model,
+            output,
+            platforms,
+        } => commands::build(&model, output.as_deref(), platforms.as_deref()),
         Command::Import {
             robot,
             output,

@@ -354,8 +354,15 @@ pub fn run(m: &TestModel, k: usize, steps: usize, h: f64) -> Vec<u64> {
     trace
 }
 
-/// The cdylib built next to the test executable (`target/<profile>/libtriad.so`).
+/// The cdylib under test: `$TRIAD_CDYLIB` (CI sets it to the glibc 2.17 runtime of
+/// `scripts/platforms.sh`), else the one built next to the test executable
+/// (`target/<profile>/libtriad.so`).
 pub fn cdylib() -> PathBuf {
+    if let Some(p) = std::env::var_os("TRIAD_CDYLIB") {
+        let p = PathBuf::from(p);
+        assert!(p.is_file(), "TRIAD_CDYLIB={} is not a file", p.display());
+        return p;
+    }
     let exe = std::env::current_exe().unwrap();
     let deps = exe.parent().unwrap();
     let (file, _) = triad::package::cdylib_names();

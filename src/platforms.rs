@@ -1,0 +1,460 @@
+//! The platforms an FMU can carry, and where `triad build` finds their runtime binaries.
+//!
+//! The FMU's binary does not depend on the model, so one runtime per platform, built once
+//! (`scripts/platforms.sh`), serves every model. The runtime directory holds
+//! `<platform>/<file>`:
+//!
+//! | platform | file | FMU folder |
+//! |---|---|---|
+//! | `linux64` | `linux64/libtriad.so` (x86_64, glibc ≥ 2.17) | `binaries/linux64` |
+//! | `win64` | `win64/triad.dll` | `binaries/win64` |
+//! | `darwin64` | `darwin64/libtriad.dylib` (x86_64 + arm64) | `binaries/darwin64` |
+//! | `aarch64-linux` | `aarch64-linux/libtriad.so` (glibc ≥ 2.17) | `binaries/aarch64-linux` (the FMI 3 name) |
+//! | `linux64-aarch64` | the same aarch64 file | `binaries/linux64`, for FMI 2 importers on ARM boards |
+//!
+//! The directory is `$TRIAD_RUNTIME_DIR`, else `runtime/` beside the `triad` executable, else
+//! `../runtime/` (so `target/release/triad` finds `target/runtime/`). The host's binary is
+//! always packed: `$TRIAD_CDYLIB` if set, else the runtime directory's, else the library of
+//! this build ([`find_cdylib`]).
+
+use std::path::{Path, PathBuf};
+
+/// FMI platform folder of this build (`linux64`, `win64`, `darwin64`, …).
+pub const PLATFORM: &str = env!("TRIAD_FMI_PLATFORM");
+
+/// File name of the crate's cdylib and the shared-library extension of this platform.
+#[must_use]
+pub fn cdylib_names() -> (&'static str, &'static str) {
+    if cfg!(windows) {
+        ("triad.dll", "dll")
+    } else if cfg!(target_os = "macos") {
+        ("libtriad.dylib", "dylib")
+    } else {
+        ("libtriad.so", "so")
+    }
+}
+
+/// Finds the compiled cdylib: `$TRIAD_CDYLIB`, else the newest of those next to the running
+/// executable, in its parent directory and in their `deps/` directories (covers `target/<profile>/triad`, test binaries
+/// in `target/<profile>/deps/` and examples).
+///
+/// # Errors
+/// A message listing the places searched.
+pub fn find_cdylib() -> Result<PathBuf, String> {
+    if let Some(p) = std::env::var_os("TRIAD_CDYLIB") {
+        let p = PathBuf::from(p);
+        return if p.is_file() {
+            Ok(p)
+        } else {
+            Err(format!("TRIAD_CDYLIB={} is not a file", p.display()))
+        };
+    }
+    let exe = std::env::current_exe()
+        .map_err(|e| format!("cannot locate the running executable: {e}"))?;
+    let dir = exe.parent().ok_or("executable has no directory")?;
+    let (file, _) = cdylib_names();
+    let mut tried = Vec::new();
+    let mut found: Option<(std::time::SystemTime, PathBuf)> = None;
+    let up = dir.parent().map(Path::to_path_buf);
+    let candidates = [
+        Some(dir.to_path_buf()),
+        Some(dir.join("deps")),
+        up.clone(),
+        up.map(|u| u.join("deps")),
+    ];
+    for d in candidates.into_iter().flatten() {
+        let p = d.join(file);
+        // the newest candidate wins: cargo only copies the library up on `cargo build --lib`
+        if let Ok(modified) = p.metadata().and_then(|m| m.modified()) {
+            if found.as_ref().is_none_or(|(t, _)| modified > *t) {
+                found = Some((modified, p.clone()));
+            }
+        }
+        tried.push(p.display().to_string());
+    }
+    if let Some((_, p)) = found {
+        return Ok(p);
+    }
+    Err(format!(
+        "{file} not found (looked at {}); build it with `cargo build --lib` or set TRIAD_CDYLIB",
+        tried.join(", ")
+    ))
+}
+
+/// A platform of the runtime directory (and of `triad build --platforms`).
+#[derive(Clone, Copy, Debug, PartialEq, Eq, PartialOrd, Ord)]
+pub enum Platform {
+    /// x86_64 Linux, glibc ≥ 2.17.
+    Linux64,
+    /// x86_64 Windows.
+    Win64,
+    /// macOS, one universal x86_64 + arm64 file.
+    Darwin64,
+    /// aarch64 Linux, glibc ≥ 2.17, in the FMI 3 folder `aarch64-linux`.
+    Aarch64Linux,
+    /// The aarch64 Linux binary in `linux64`: what FMI 2 importers on ARM boards load.
+    Linux64Aarch64,
+}
+
+impl Platform {
+    /// What `--platforms all` packs.
+    pub const ALL: [Self; 4] = [
+        Self::Linux64,
+        Self::Win64,
+        Self::Darwin64,
+        Self::Aarch64Linux,
+    ];
+    /// Every name `--platforms` accepts.
+    pub const NAMES: [Self; 5] = [
+        Self::Linux64,
+        Self::Win64,
+        Self::Darwin64,
+        Self::Aarch64Linux,
+        Self::Linux64Aarch64,
+    ];
+
+    /// The name on the command line.
+    #[must_use]
+    pub fn name(self) -> &'static str {
+        match self {
+            Self::Linux64 => "linux64",
+            Self::Win64 => "win64",
+            Self::Darwin64 => "darwin64",
+            Self::Aarch64Linux => "aarch64-linux",
+            Self::Linux64Aarch64 => "linux64-aarch64",
+        }
+    }
+
+    /// The folder under `binaries/` in the FMU.
+    #[must_use]
+    pub fn folder(self) -> &'static str {
+        match self {
+            Self::Linux64 | Self::Linux64Aarch64 => "linux64",
+            Self::Aarch64Linux => "aarch64-linux",
+            other => other.name(),
+        }
+    }
+
+    /// The folder in the runtime directory (and the `--only` name of `scripts/platforms.sh`).
+    #[must_use]
+    pub fn runtime(self) -> &'static str {
+        match self {
+            Self::Linux64Aarch64 => "aarch64-linux",
+            other => other.name(),
+        }
+    }
+
+    /// File name in the runtime directory and the extension of the FMU's library.
+    #[must_use]
+    pub fn file(self) -> (&'static str, &'static str) {
+        match self {
+            Self::Win64 => ("triad.dll", "dll"),
+            Self::Darwin64 => ("libtriad.dylib", "dylib"),
+            _ => ("libtriad.so", "so"),
+        }
+    }
+
+    /// What the binary runs on.
+    #[must_use]
+    pub fn describe(self) -> &'static str {
+        match self {
+            Self::Linux64 => "x86_64 Linux, glibc >= 2.17",
+            Self::Win64 => "x86_64 Windows",
+            Self::Darwin64 => "macOS x86_64 >= 10.12 and arm64 >= 11.0",
+            Self::Aarch64Linux => "aarch64 Linux, glibc >= 2.17 (FMI 3 folder name)",
+            Self::Linux64Aarch64 => "aarch64 Linux, glibc >= 2.17, for FMI 2 importers on ARM",
+        }
+    }
+
+    /// The platform named `name`.
+    #[must_use]
+    pub fn parse(name: &str) -> Option<Self> {
+        Self::NAMES.into_iter().find(|p| p.name() == name)
+    }
+
+    /// The platform of this build's own library (`None` on a system without runtimes).
+    #[must_use]
+    pub fn host() -> Option<Self> {
+        match (std::env::consts::OS, std::env::consts::ARCH) {
+            ("linux", "x86_64") => Some(Self::Linux64),
+            ("linux", "aarch64") => Some(Self::Linux64Aarch64),
+            ("windows", "x86_64") => Some(Self::Win64),
+            ("macos", _) => Some(Self::Darwin64),
+            _ => None,
+        }
+    }
+}
+
+/// What `--platforms` asks for.
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub enum Selection {
+    /// No `--platforms`: the host's and every platform found in the runtime directory.
+    Found,
+    /// `all`: every platform of [`Platform::ALL`]; one missing is an error.
+    All,
+    /// `host`: the host's binary only.
+    Host,
+    /// A list: these and the host's; one missing is an error.
+    List(Vec<Platform>),
+}
+
+impl Selection {
+    /// Parses `all`, `host` or a comma-separated list of platform names.
+    ///
+    /// # Errors
+    /// An unknown name (the message lists the known ones), an empty list.
+    pub fn parse(text: &str) -> Result<Self, String> {
+        match text.trim() {
+            "all" => return Ok(Self::All),
+            "host" => return Ok(Self::Host),
+            _ => {}
+        }
+        let mut list = Vec::new();
+        for name in text.split(',').map(str::trim) {
+            let p = Platform::parse(name).ok_or_else(|| {
+                let known: Vec<&str> = Platform::NAMES.iter().map(|p| p.name()).collect();
+                format!(
+                    "unknown platform '{name}' in --platforms (all, host, or a list of: {})",
+                    known.join(", ")
+                )
+            })?;
+            if !list.contains(&p) {
+                list.push(p);
+            }
+        }
+        Ok(Self::List(list))
+    }
+}
+
+/// One binary to pack.
+#[derive(Clone, Debug)]
+pub struct Binary {
+    /// Folder under `binaries/`.
+    pub folder: String,
+    /// Library extension (`so`, `dll`, `dylib`).
+    pub ext: &'static str,
+    /// The `--platforms` name, with what it runs on.
+    pub label: String,
+    /// Where it was read from.
+    pub source: PathBuf,
+    /// Its bytes.
+    pub bytes: Vec<u8>,
+}
+
+/// The runtime directory: `$TRIAD_RUNTIME_DIR`, else `runtime/` beside the running executable,
+/// else `../runtime/` from it; `None` when none is a directory.
+#[must_use]
+pub fn runtime_dir() -> Option<PathBuf> {
+    if let Some(d) = std::env::var_os("TRIAD_RUNTIME_DIR") {
+        return Some(PathBuf::from(d));
+    }
+    let exe = std::env::current_exe().ok()?;
+    let dir = exe.parent()?;
+    [
+        Some(dir.join("runtime")),
+        dir.parent().map(|p| p.join("runtime")),
+    ]
+    .into_iter()
+    .flatten()
+    .find(|d| d.is_dir())
+}
+
+/// How the documentation names a binary: the platform and what it runs on.
+#[must_use]
+pub fn label(platform: Option<Platform>, folder: &str) -> String {
+    platform.map_or_else(
+        || format!("{folder} (this build)"),
+        |p| format!("{} ({})", p.name(), p.describe()),
+    )
+}
+
+fn read(
+    platform: Option<Platform>,
+    folder: &str,
+    ext: &'static str,
+    path: &Path,
+) -> Result<Binary, String> {
+    let bytes = std::fs::read(path).map_err(|e| format!("{}: {e}", path.display()))?;
+    let label = label(platform, folder);
+    Ok(Binary {
+        folder: folder.to_string(),
+        ext,
+        label,
+        source: path.to_path_buf(),
+        bytes,
+    })
+}
+
+fn missing(p: Platform, dir: Option<&Path>) -> String {
+    let (file, _) = p.file();
+    let place = dir.map_or_else(
+        || "no runtime directory was found ($TRIAD_RUNTIME_DIR, runtime/ or ../runtime/ beside triad)".to_string(),
+        |d| format!("{} is missing", d.join(p.runtime()).join(file).display()),
+    );
+    format!(
+        "platform {} asked for but not found: {place}; build it with `bash scripts/platforms.sh --only {}` (or set TRIAD_RUNTIME_DIR)",
+        p.name(),
+        p.runtime()
+    )
+}
+
+/// The binaries `selection` asks for, read from the runtime directory `dir`, the host's
+/// always among them, sorted by folder; and notes (a platform left out because its folder is
+/// taken).
+///
+/// # Errors
+/// A platform asked for (`all` or a list) but not found, two platforms asked for that share a
+/// folder, a host library that cannot be found or read.
+pub fn collect(
+    selection: &Selection,
+    dir: Option<&Path>,
+) -> Result<(Vec<Binary>, Vec<String>), String> {
+    let mut notes = Vec::new();
+    let asked: Vec<Platform> = match selection {
+        Selection::Found => Platform::ALL
+            .into_iter()
+            .filter(|p| dir.is_some_and(|d| d.join(p.runtime()).join(p.file().0).is_file()))
+            .collect(),
+        Selection::All => Platform::ALL.to_vec(),
+        Selection::Host => Vec::new(),
+        Selection::List(list) => list.clone(),
+    };
+    let explicit = matches!(selection, Selection::List(_));
+    for (i, a) in asked.iter().enumerate() {
+        if let Some(b) = asked[i + 1..].iter().find(|b| b.folder() == a.folder()) {
+            return Err(format!(
+                "--platforms: {} and {} both go into binaries/{}; ask for one of them",
+                a.name(),
+                b.name(),
+                a.folder()
+            ));
+        }
+    }
+    let host = Platform::host();
+    let mut out: Vec<Binary> = Vec::new();
+    // the host's binary: explicit TRIAD_CDYLIB, the runtime directory's, this build's
+    let host_folder = host.map_or(PLATFORM, Platform::folder);
+    let replaced = explicit
+        && asked
+            .iter()
+            .any(|p| p.folder() == host_folder && Some(*p) != host);
+    if replaced {
+        notes.push(format!(
+            "the host's binary is not packed: binaries/{host_folder} holds the platform asked for"
+        ));
+    } else {
+        let in_dir = host
+            .zip(dir)
+            .map(|(h, d)| d.join(h.runtime()).join(h.file().0))
+            .filter(|p| p.is_file());
+        let path = match (std::env::var_os("TRIAD_CDYLIB"), in_dir) {
+            (None, Some(p)) => p,
+            _ => find_cdylib()?,
+        };
+        let ext = host.map_or(cdylib_names().1, |h| h.file().1);
+        out.push(read(host, host_folder, ext, &path)?);
+    }
+    for p in asked {
+        if Some(p) == host && !replaced {
+            continue;
+        }
+        if p.folder() == host_folder && !explicit {
+            notes.push(format!(
+                "{} is not packed: binaries/{} holds the host's binary",
+                p.name(),
+                p.folder()
+            ));
+            continue;
+        }
+        let path = dir
+            .map(|d| d.join(p.runtime()).join(p.file().0))
+            .filter(|f| f.is_file())
+            .ok_or_else(|| missing(p, dir))?;
+        out.push(read(Some(p), p.folder(), p.file().1, &path)?);
+    }
+    out.sort_by(|a, b| a.folder.cmp(&b.folder));
+    Ok((out, notes))
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn names_parse_and_lists() {
+        for p in Platform::NAMES {
+            assert_eq!(Platform::parse(p.name()), Some(p));
+        }
+        assert_eq!(Selection::parse("all"), Ok(Selection::All));
+        assert_eq!(Selection::parse("host"), Ok(Selection::Host));
+        assert_eq!(
+            Selection::parse("win64, darwin64,win64"),
+            Ok(Selection::List(vec![Platform::Win64, Platform::Darwin64]))
+        );
+        let e = Selection::parse("win64,win32").unwrap_err();
+        assert!(
+            e.contains("'win32'") && e.contains("linux64-aarch64"),
+            "{e}"
+        );
+        assert!(Selection::parse("").is_err());
+        assert_eq!(Platform::Linux64Aarch64.folder(), "linux64");
+        assert_eq!(Platform::Linux64Aarch64.runtime(), "aarch64-linux");
+    }
+
+    #[test]
+    fn found_asked_and_missing() {
+        let dir = tempfile_dir();
+        std::fs::create_dir_all(dir.join("win64")).unwrap();
+        std::fs::write(dir.join("win64/triad.dll"), b"MZ").unwrap();
+        std::fs::create_dir_all(dir.join("aarch64-linux")).unwrap();
+        std::fs::write(dir.join("aarch64-linux/libtriad.so"), b"ELF").unwrap();
+        let host = Platform::host().unwrap();
+        // found: the host and what the directory holds
+        let (found, _) = collect(&Selection::Found, Some(&dir)).unwrap();
+        let folders: Vec<&str> = found.iter().map(|b| b.folder.as_str()).collect();
+        assert!(folders.contains(&host.folder()), "{folders:?}");
+        assert!(folders.contains(&"win64") && folders.contains(&"aarch64-linux"));
+        assert!(!folders.contains(&"darwin64") || host == Platform::Darwin64);
+        // a platform asked for and missing names the command that builds it
+        let e = collect(&Selection::List(vec![Platform::Darwin64]), Some(&dir));
+        if host != Platform::Darwin64 {
+            let e = e.unwrap_err();
+            assert!(
+                e.contains("bash scripts/platforms.sh --only darwin64"),
+                "{e}"
+            );
+            let e = collect(&Selection::All, Some(&dir)).unwrap_err();
+            assert!(e.contains("--only"), "{e}");
+            let e = collect(&Selection::All, None).unwrap_err();
+            assert!(e.contains("no runtime directory"), "{e}");
+        }
+        // two platforms for one folder
+        let e = collect(
+            &Selection::List(vec![Platform::Linux64, Platform::Linux64Aarch64]),
+            Some(&dir),
+        )
+        .unwrap_err();
+        assert!(e.contains("both go into binaries/linux64"), "{e}");
+        // the ARM-Linux FMU for FMI 2 importers: the aarch64 file in linux64
+        if host == Platform::Linux64 {
+            let (arm, notes) =
+                collect(&Selection::List(vec![Platform::Linux64Aarch64]), Some(&dir)).unwrap();
+            assert_eq!(arm.len(), 1);
+            assert_eq!(arm[0].folder, "linux64");
+            assert_eq!(arm[0].bytes, b"ELF");
+            assert!(notes[0].contains("host's binary is not packed"));
+        }
+        // host only
+        let (h, _) = collect(&Selection::Host, Some(&dir)).unwrap();
+        assert_eq!(h.len(), 1);
+        assert_eq!(h[0].folder, host.folder());
+        std::fs::remove_dir_all(&dir).unwrap();
+    }
+
+    fn tempfile_dir() -> PathBuf {
+        let d = std::env::temp_dir().join(format!("triad-platforms-{}", std::process::id()));
+        let _ = std::fs::remove_dir_all(&d);
+        std::fs::create_dir_all(&d).unwrap();
+        d
+    }
+}
