@@ -117,14 +117,16 @@ impl Simulation {
             return None;
         }
         self.order2_noticed = true;
-        let name = joint
+        let what = joint
             .and_then(|j| self.model.def().joints.get(j))
-            .map_or("?", |j| j.name.as_str());
+            .map_or("the contacts' damping and friction".to_string(), |j| {
+                format!("the damping of joint '{}'", j.name)
+            });
         Some(format!(
-            "order 4: a step before t = {} was taken as order-2 stages: the damping of joint \
-             '{name}' is too stiff for the step (the composition's backward stage would feed \
-             energy in); such steps stay dissipative and the energy account exact, at order 2. \
-             A smaller solver.max_step keeps order 4",
+            "order 4: a step before t = {} was taken as order-2 stages: {what} is too stiff for \
+             the step (the composition's backward stage would feed energy in); such steps stay \
+             dissipative and the energy account exact, at order 2. A smaller solver.max_step \
+             keeps order 4",
             self.state.time()
         ))
     }

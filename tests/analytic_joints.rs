@@ -81,6 +81,7 @@ fn joint(
 
 fn model(bodies: Vec<BodyDef>, joints: Vec<JointDef>, gravity: Vec3) -> ModelDef {
     ModelDef {
+        contact: Default::default(),
         gravity,
         bodies,
         joints,

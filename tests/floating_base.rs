@@ -92,6 +92,7 @@ fn floating_tree(gravity: Vec3) -> ModelDef {
     js.stiffness = 40.0;
     jw.damping = 1e-3;
     ModelDef {
+        contact: Default::default(),
         gravity,
         bodies,
         joints: vec![j1, j2, j3, js, jw],

@@ -55,6 +55,7 @@ fn shoulder() -> JointDef {
 fn wrist_with_yoke() -> ModelDef {
     let wrist = Vec3::new(0.0, 0.0, -0.6);
     ModelDef {
+        contact: Default::default(),
         gravity: Vec3::new(0.0, 0.0, -9.81),
         bodies: vec![
             arm(),
@@ -99,6 +100,7 @@ fn wrist_universal() -> ModelDef {
     );
     u.axis2 = Vec3::x();
     ModelDef {
+        contact: Default::default(),
         gravity: Vec3::new(0.0, 0.0, -9.81),
         bodies: vec![arm(), hand()],
         joints: vec![shoulder(), actuated(u, &[0.3, -0.4], &[1.2, -0.7])],
@@ -169,6 +171,7 @@ fn welded_chain(merged: bool) -> ModelDef {
             rotation: f.rotation * j2f.rotation,
         };
         return ModelDef {
+            contact: Default::default(),
             gravity: Vec3::new(0.0, 0.0, -9.81),
             bodies,
             joints: vec![j1, j2, j3],
@@ -200,6 +203,7 @@ fn welded_chain(merged: bool) -> ModelDef {
     j2.parent = Some(3);
     j2.parent_frame = j2f;
     ModelDef {
+        contact: Default::default(),
         gravity: Vec3::new(0.0, 0.0, -9.81),
         bodies,
         joints: vec![j1, weld, j2, j3, tool],
@@ -307,6 +311,7 @@ fn rod(kind: JointType) -> ModelDef {
         set_q(&mut j, &[1.2], &[0.0]);
     }
     ModelDef {
+        contact: Default::default(),
         gravity: Vec3::new(0.0, 0.0, -9.81),
         bodies: vec![body(
             "rod",

@@ -69,6 +69,7 @@ proptest! {
         let m1 = moments(e1);
         let m2 = moments(e2);
         let def = ModelDef {
+            contact: Default::default(),
             gravity: Vec3::zeros(),
             bodies: vec![
                 body("a", 2.0, Vec3::zeros(), Mat3::from_diagonal(&Vec3::from(m1))),

@@ -59,6 +59,7 @@ fn model(kind: JointType) -> ModelDef {
         initial: initial(s),
     };
     ModelDef {
+        contact: Default::default(),
         gravity: Vec3::new(0.0, 0.0, -9.81),
         bodies: vec![
             b("a", 2.0, Vec3::zeros()),

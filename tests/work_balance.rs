@@ -33,6 +33,7 @@ fn b7(damping: f64) -> ModelDef {
     rev.stiffness = 5.0;
     rev.damping = damping;
     ModelDef {
+        contact: Default::default(),
         gravity: Vec3::new(0.0, 0.0, -9.81),
         bodies: vec![
             body(
@@ -130,6 +131,7 @@ fn floating() -> ModelDef {
     cyl.stiffness = 3.0;
     cyl.damping = 0.1;
     ModelDef {
+        contact: Default::default(),
         gravity: Vec3::zeros(),
         bodies: vec![
             body(

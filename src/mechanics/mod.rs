@@ -30,12 +30,13 @@ mod run;
 mod step;
 
 pub use model::def::{
-    BodyDef, BodyIndex, BodyLoadDef, Frame, FreeBodyInitial, JointDef, JointInitial, JointLimits,
-    JointType, ModelDef, SiteDef, SolverSettings, STOP_STIFFNESS,
+    BodyDef, BodyIndex, BodyLoadDef, ContactDef, ContactLaw, Frame, FreeBodyInitial, GroundDef,
+    JointDef, JointInitial, JointLimits, JointType, ModelDef, ShapeDef, ShapeKind, SiteDef,
+    SolverSettings, STOP_STIFFNESS,
 };
 pub use model::error::ModelError;
 pub use model::runtime::{InputSlot, Model};
-pub use model::{body, constraint, def, joint, kinematics, loops, ranges};
+pub use model::{body, constraint, contact, def, joint, kinematics, loops, ranges};
 pub use run::advance::{controlled_step, step, step_state};
 pub use run::control::{above_floor, Control, Verdict};
 pub use run::outputs::{BodyOutput, JointOutput, Outputs};

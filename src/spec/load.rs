@@ -197,6 +197,28 @@ const VISUAL: &[Field] = &[
     opt("scale", VEC3),
     opt("rgba", Check::Value(is::<[f64; 4]>)),
 ];
+const GROUND: &[Field] = &[
+    opt("height", NUM),
+    opt("friction", NUM),
+    opt("stiffness", NUM),
+    opt("damping", NUM),
+];
+const SPHERE: &[Field] = &[req("radius", NUM)];
+const ROUND: &[Field] = &[req("radius", NUM), req("length", NUM)];
+const BOX: &[Field] = &[req("size", VEC3)];
+const COLLISION: &[Field] = &[
+    opt("name", TEXT),
+    req("body", TEXT),
+    opt("origin", Check::Table(ORIGIN)),
+    opt("sphere", Check::Table(SPHERE)),
+    opt("capsule", Check::Table(ROUND)),
+    opt("box", Check::Table(BOX)),
+    opt("cylinder", Check::Table(ROUND)),
+    opt("friction", NUM),
+    opt("stiffness", NUM),
+    opt("damping", NUM),
+];
+const PAIR: &[Field] = &[req("a", TEXT), req("b", TEXT)];
 const TOP: &[Field] = &[
     req("name", TEXT),
     opt("description", TEXT),
@@ -208,6 +230,10 @@ const TOP: &[Field] = &[
     opt("load", Check::Tables(LOAD)),
     opt("site", Check::Tables(SITE)),
     opt("visual", Check::Tables(VISUAL)),
+    opt("ground", Check::Table(GROUND)),
+    opt("collision", Check::Tables(COLLISION)),
+    opt("contact_pair", Check::Tables(PAIR)),
+    opt("self_collision", BOOL),
 ];
 
 fn join(path: &str, key: &str) -> String {

@@ -2,12 +2,101 @@
 
 use crate::math::{matrix_to_quat, quat_to_matrix, rpy_to_matrix, Mat3, Vec3};
 use crate::mechanics::{
-    BodyDef, BodyLoadDef, Frame, FreeBodyInitial, JointDef, JointInitial, JointLimits, JointType,
-    ModelDef, SiteDef, SolverSettings,
+    BodyDef, BodyLoadDef, ContactDef, ContactLaw, Frame, FreeBodyInitial, GroundDef, JointDef,
+    JointInitial, JointLimits, JointType, ModelDef, ShapeDef, ShapeKind, SiteDef, SolverSettings,
 };
 
 use super::schema::{JointKind, JointSpec, OriginSpec, Spec};
 use super::values::{rows_to_matrix, OrientationSpec};
+
+/// The spec's contact: the ground, the shapes (those on known bodies, with a geometry) and
+/// the pairs (listed ones, and with `self_collision` every pair of shapes on different bodies
+/// not joined by a joint; cylinders touch the ground only).
+fn contact(spec: &Spec, index: &dyn Fn(&str) -> Option<usize>) -> ContactDef {
+    let ground = spec.ground.map(|g| GroundDef {
+        height: g.height,
+        law: ContactLaw {
+            friction: g.friction,
+            stiffness: g.stiffness,
+            damping: g.damping,
+        },
+    });
+    let base = ground.map(|g| g.law).unwrap_or_default();
+    let names = spec.collision_names();
+    let mut shapes = Vec::new();
+    let mut at: Vec<Option<usize>> = Vec::new();
+    for (c, name) in spec.collision.iter().zip(&names) {
+        let kind = match (c.sphere, c.capsule, c.cuboid, c.cylinder) {
+            (Some(s), None, None, None) => ShapeKind::Sphere { radius: s.radius },
+            (None, Some(s), None, None) => ShapeKind::Capsule {
+                radius: s.radius,
+                length: s.length,
+            },
+            (None, None, Some(b), None) => ShapeKind::Cuboid {
+                size: Vec3::from(b.size),
+            },
+            (None, None, None, Some(s)) => ShapeKind::Cylinder {
+                radius: s.radius,
+                length: s.length,
+            },
+            _ => {
+                at.push(None);
+                continue;
+            }
+        };
+        let Some(body) = index(&c.body) else {
+            at.push(None);
+            continue;
+        };
+        let own = c.friction.is_some() || c.stiffness.is_some() || c.damping.is_some();
+        at.push(Some(shapes.len()));
+        shapes.push(ShapeDef {
+            name: name.clone(),
+            body,
+            kind,
+            frame: frame(&c.origin),
+            law: own.then(|| ContactLaw {
+                friction: c.friction.unwrap_or(base.friction),
+                stiffness: c.stiffness.unwrap_or(base.stiffness),
+                damping: c.damping.unwrap_or(base.damping),
+            }),
+        });
+    }
+    let by_name = |n: &str| names.iter().position(|m| m == n).and_then(|i| at[i]);
+    let mut pairs: Vec<(usize, usize)> = Vec::new();
+    let add = |a: usize, b: usize, pairs: &mut Vec<(usize, usize)>| {
+        let touchable = shapes[a].body != shapes[b].body
+            && crate::mechanics::contact::pair_supported(&shapes[a].kind, &shapes[b].kind);
+        if touchable && !pairs.contains(&(a, b)) && !pairs.contains(&(b, a)) {
+            pairs.push((a, b));
+        }
+    };
+    for p in &spec.contact_pair {
+        if let (Some(a), Some(b)) = (by_name(&p.a), by_name(&p.b)) {
+            add(a, b, &mut pairs);
+        }
+    }
+    if spec.self_collision {
+        let joined = |x: usize, y: usize| {
+            spec.joint.iter().any(|j| {
+                let (p, c) = (index(&j.parent), index(&j.child));
+                (p == Some(x) && c == Some(y)) || (p == Some(y) && c == Some(x))
+            })
+        };
+        for a in 0..shapes.len() {
+            for b in a + 1..shapes.len() {
+                if !joined(shapes[a].body, shapes[b].body) {
+                    add(a, b, &mut pairs);
+                }
+            }
+        }
+    }
+    ContactDef {
+        ground,
+        shapes,
+        pairs,
+    }
+}
 
 /// The mechanics' joint type of a spec joint type.
 pub(crate) fn joint_type(kind: JointKind) -> JointType {
@@ -177,7 +266,9 @@ pub(crate) fn build(spec: &Spec) -> (ModelDef, SolverSettings) {
             })
         })
         .collect();
+    let contact = contact(spec, &index);
     let def = ModelDef {
+        contact,
         gravity: Vec3::from(spec.gravity),
         bodies,
         joints,

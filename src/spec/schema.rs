@@ -52,6 +52,119 @@ pub struct Spec {
     /// Shapes for the 3-D viewer (`[[visual]]`); no effect on the motion.
     #[serde(default, skip_serializing_if = "Vec::is_empty")]
     pub visual: Vec<VisualSpec>,
+    /// The ground plane (`[ground]`); none without this table.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub ground: Option<GroundSpec>,
+    /// Collision shapes fixed on bodies (`[[collision]]`); every shape touches the ground.
+    #[serde(default, skip_serializing_if = "Vec::is_empty")]
+    pub collision: Vec<CollisionSpec>,
+    /// Pairs of collision shapes that touch each other (`[[contact_pair]]`).
+    #[serde(default, skip_serializing_if = "Vec::is_empty")]
+    pub contact_pair: Vec<ContactPairSpec>,
+    /// Every pair of shapes on different bodies touches, but for bodies joined by a joint.
+    #[serde(default, skip_serializing_if = "std::ops::Not::not")]
+    pub self_collision: bool,
+}
+
+fn default_friction() -> f64 {
+    crate::mechanics::ContactLaw::default().friction
+}
+fn default_contact_stiffness() -> f64 {
+    crate::mechanics::ContactLaw::default().stiffness
+}
+fn default_contact_damping() -> f64 {
+    crate::mechanics::ContactLaw::default().damping
+}
+
+/// `[ground]`: a plane whose normal points against gravity.
+#[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct GroundSpec {
+    /// Height along the normal, m (default 0).
+    #[serde(default)]
+    pub height: f64,
+    /// Coulomb friction coefficient (default 0.8).
+    #[serde(default = "default_friction")]
+    pub friction: f64,
+    /// Normal contact stiffness, N/m (default 1e5); also the friction bristle's.
+    #[serde(default = "default_contact_stiffness")]
+    pub stiffness: f64,
+    /// Hunt–Crossley damping, s/m (default 1): normal force `k x (1 + damping ẋ)`.
+    #[serde(default = "default_contact_damping")]
+    pub damping: f64,
+}
+
+/// `{ radius = … }`.
+#[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct SphereShape {
+    /// Radius, m.
+    pub radius: f64,
+}
+
+/// `{ radius = …, length = … }` (along the shape's z axis).
+#[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct RoundShape {
+    /// Radius, m.
+    pub radius: f64,
+    /// Length along z, m (a capsule's without its caps).
+    pub length: f64,
+}
+
+/// `{ size = [x, y, z] }`.
+#[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct BoxShape {
+    /// Full edge lengths, m.
+    pub size: [f64; 3],
+}
+
+/// `[[collision]]`: a shape fixed on a body that touches the ground (and the shapes of the
+/// pairs it is in); exactly one of `sphere`, `capsule`, `box`, `cylinder`.
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct CollisionSpec {
+    /// Identifier, unique among shapes (default: the body's name and the shape's number on
+    /// it, `foot_1`).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub name: Option<String>,
+    /// The body it is fixed on.
+    pub body: String,
+    /// The shape's frame in the body frame.
+    #[serde(default)]
+    pub origin: OriginSpec,
+    /// A sphere about the origin.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub sphere: Option<SphereShape>,
+    /// A capsule along z, centred.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub capsule: Option<RoundShape>,
+    /// A box centred on the origin.
+    #[serde(rename = "box", default, skip_serializing_if = "Option::is_none")]
+    pub cuboid: Option<BoxShape>,
+    /// A cylinder along z, centred (it touches the ground only).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub cylinder: Option<RoundShape>,
+    /// Its own friction coefficient (default: the ground's).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub friction: Option<f64>,
+    /// Its own contact stiffness, N/m (default: the ground's).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub stiffness: Option<f64>,
+    /// Its own Hunt–Crossley damping, s/m (default: the ground's).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub damping: Option<f64>,
+}
+
+/// `[[contact_pair]]`: two collision shapes (on different bodies) that touch each other.
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct ContactPairSpec {
+    /// One shape's name.
+    pub a: String,
+    /// The other's.
+    pub b: String,
 }
 
 /// `[experiment]`: the FMU's DefaultExperiment and `triad simulate`'s defaults.
@@ -341,6 +454,23 @@ pub struct LoadSpec {
 }
 
 impl Spec {
+    /// The name of every collision shape: its own, else the body's name and its number among
+    /// that body's shapes (`foot_1`, `foot_2`).
+    #[must_use]
+    pub fn collision_names(&self) -> Vec<String> {
+        let mut count: std::collections::HashMap<&str, usize> = std::collections::HashMap::new();
+        self.collision
+            .iter()
+            .map(|c| {
+                let n = count.entry(c.body.as_str()).or_insert(0);
+                *n += 1;
+                c.name
+                    .clone()
+                    .unwrap_or_else(|| format!("{}_{}", c.body, n))
+            })
+            .collect()
+    }
+
     /// Deterministic JSON of the whole spec (the FMU's `resources/model.json`, hashed into the
     /// GUID). `Spec::from_str(&s.canonical_json(), Format::Json, ..)` gives back an equal spec.
     #[must_use]

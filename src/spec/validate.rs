@@ -12,6 +12,7 @@ use super::{kinematics, lower};
 use common::check_finite;
 
 mod common;
+mod contact;
 mod joints;
 
 /// Largest loop-closure violation accepted at the initial pose, m or 1: the mechanics' own
@@ -272,6 +273,7 @@ pub(crate) fn structure(spec: &Spec) -> Report {
     );
     sites(spec, &mut report, &body_index);
     visuals(spec, &mut report, &body_index);
+    contact::check(spec, &mut report, &body_index);
     if spec.body.is_empty() {
         report.push("body", "the model has no bodies: add at least one [[body]]");
     }

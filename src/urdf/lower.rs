@@ -245,6 +245,10 @@ pub(crate) fn spec(
         load: Vec::new(),
         site: Vec::new(),
         visual: Vec::new(),
+        ground: None,
+        collision: Vec::new(),
+        contact_pair: Vec::new(),
+        self_collision: false,
     };
     match roots.as_slice() {
         [_] => {}

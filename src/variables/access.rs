@@ -31,6 +31,11 @@ pub fn read_state(acc: Accessor, state: &State) -> Option<f64> {
         Accessor::P(i) => out.p.get(i).copied(),
         Accessor::L(i) => out.l.get(i).copied(),
         Accessor::ConstraintResidual => Some(out.constraint_residual),
+        Accessor::ContactForce { shape, i } => out
+            .contacts
+            .get(shape)
+            .and_then(|c| c.force.get(i).copied()),
+        Accessor::ContactGap(shape) => out.contacts.get(shape).map(|c| c.gap),
         // the table only makes these for joints of the same definition as the state
         Accessor::Damping(j) => Some(state.damping(j)),
         Accessor::Stiffness(j) => Some(state.stiffness(j)),
@@ -75,6 +80,10 @@ pub fn read_param(acc: Accessor, def: &ModelDef, settings: &SolverSettings) -> O
         Accessor::Rtol => Some(settings.rtol),
         Accessor::Atol => Some(settings.atol),
         Accessor::MinStep => Some(settings.min_step),
+        Accessor::GroundHeight => def.contact.ground.map(|g| g.height),
+        Accessor::GroundFriction => def.contact.ground.map(|g| g.law.friction),
+        Accessor::GroundStiffness => def.contact.ground.map(|g| g.law.stiffness),
+        Accessor::GroundDamping => def.contact.ground.map(|g| g.law.damping),
         _ => None,
     }
 }
@@ -105,6 +114,13 @@ fn set_initial(
     };
     *slot.ok_or_else(|| format!("joint '{}' has no coordinate {}", j.name, k + 1))? = value;
     Ok(())
+}
+
+fn ground(def: &mut ModelDef) -> Result<&mut crate::mechanics::GroundDef, String> {
+    def.contact
+        .ground
+        .as_mut()
+        .ok_or_else(|| "the model has no ground".to_string())
 }
 
 fn limits(def: &mut ModelDef, j: usize) -> Result<&mut JointLimits, String> {
@@ -208,6 +224,22 @@ pub fn write_param(
         Accessor::Atol => {
             named("solver.atol", ranges::atol(value))?;
             settings.atol = value;
+        }
+        Accessor::GroundHeight => {
+            named("ground.height", ranges::any_finite(value))?;
+            ground(def)?.height = value;
+        }
+        Accessor::GroundFriction => {
+            named("ground.friction", ranges::non_negative(value))?;
+            ground(def)?.law.friction = value;
+        }
+        Accessor::GroundStiffness => {
+            named("ground.stiffness", ranges::positive(value))?;
+            ground(def)?.law.stiffness = value;
+        }
+        Accessor::GroundDamping => {
+            named("ground.damping", ranges::non_negative(value))?;
+            ground(def)?.law.damping = value;
         }
         Accessor::MinStep => {
             named("solver.min_step", ranges::min_step(value))?;

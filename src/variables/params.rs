@@ -175,6 +175,25 @@ pub(super) fn parameters(b: &mut Builder, def: &ModelDef, settings: &SolverSetti
     for (joint, j) in def.joints.iter().enumerate() {
         joint_parameters(b, joint, j);
     }
+    if let Some(g) = &def.contact.ground {
+        b.fixed(
+            "ground.height".into(),
+            g.height,
+            Some("m"),
+            "height of the ground plane along its normal (the normal points against gravity)"
+                .into(),
+            Accessor::GroundHeight,
+        );
+        b.fixed("ground.friction".into(), g.law.friction, Some("1"), "Coulomb friction coefficient of the ground (and of every collision shape that sets none of its own)".into(), Accessor::GroundFriction);
+        b.fixed(
+            "ground.stiffness".into(),
+            g.law.stiffness,
+            Some("N/m"),
+            "normal contact stiffness of the ground (and of its friction bristles)".into(),
+            Accessor::GroundStiffness,
+        );
+        b.fixed("ground.damping".into(), g.law.damping, Some("s/m"), "Hunt-Crossley damping of the ground contacts: normal force k x (1 + damping x'); its loss is counted in system.work".into(), Accessor::GroundDamping);
+    }
     b.fixed(
         "solver.max_step".into(),
         settings.max_step,

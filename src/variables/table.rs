@@ -228,7 +228,7 @@ fn outputs(b: &mut Builder, def: &ModelDef) {
     b.output(
         "system.energy".into(),
         "J",
-        "kinetic + potential energy (gravity and joint springs)".into(),
+        "kinetic + potential energy (gravity, joint springs and stops, contact springs)".into(),
         Accessor::Energy,
     );
     b.output("system.work".into(), "J", "work of the inputs minus energy dissipated by damping since the start; energy - work stays constant".into(), Accessor::Work);
@@ -254,6 +254,28 @@ fn outputs(b: &mut Builder, def: &ModelDef) {
         "largest constraint violation after the last step".into(),
         Accessor::ConstraintResidual,
     );
+    for (shape, sd) in def.contact.shapes.iter().enumerate() {
+        let n = &sd.name;
+        let body = &def.bodies[sd.body].name;
+        for (i, c) in XYZ.iter().enumerate() {
+            b.output(
+                format!("contact.{n}.f[{}]", i + 1),
+                "N",
+                format!("contact force on body {body} through collision shape {n} (ground and other shapes), {c} component, world frame"),
+                Accessor::ContactForce { shape, i },
+            );
+        }
+        if def.contact.ground.is_some() {
+            b.output(
+                format!("contact.{n}.gap"),
+                "m",
+                format!(
+                    "signed distance of collision shape {n} to the ground (negative: penetration)"
+                ),
+                Accessor::ContactGap(shape),
+            );
+        }
+    }
 }
 
 /// Builds the table: inputs, outputs, parameters (see [`VariableTable::new`]).

@@ -132,6 +132,23 @@ pub enum Accessor {
     L(usize),
     /// `system.constraint_residual`.
     ConstraintResidual,
+    /// `contact.C.f[i]`: contact force on shape C's body through C, world frame.
+    ContactForce {
+        /// Shape index.
+        shape: usize,
+        /// Component, 0-based.
+        i: usize,
+    },
+    /// `contact.C.gap`: shape C's signed distance to the ground.
+    ContactGap(usize),
+    /// `ground.height` (fixed).
+    GroundHeight,
+    /// `ground.friction` (fixed).
+    GroundFriction,
+    /// `ground.stiffness` (fixed).
+    GroundStiffness,
+    /// `ground.damping` (fixed).
+    GroundDamping,
     /// `gravity[i]`.
     Gravity(usize),
     /// `body.B.mass`.

@@ -120,6 +120,7 @@ pub fn free_body(
     force: bool,
 ) -> ModelDef {
     ModelDef {
+        contact: Default::default(),
         gravity: Vec3::zeros(),
         bodies: vec![body("b", mass, Vec3::zeros(), inertia)],
         joints: vec![],
@@ -209,6 +210,7 @@ pub fn double_pendulum() -> ModelDef {
     set_q(&mut j1, &[2.0], &[]);
     set_q(&mut j2, &[0.5], &[]);
     ModelDef {
+        contact: Default::default(),
         gravity: Vec3::new(0.0, 0.0, -9.81),
         bodies: vec![body("link1", 1.0, com, i), body("link2", 1.0, com, i)],
         joints: vec![j1, j2],
@@ -235,6 +237,7 @@ pub fn heavy_top() -> ModelDef {
         w: Vec3::new(0.0, 0.0, 30.0),
     };
     ModelDef {
+        contact: Default::default(),
         gravity: Vec3::new(0.0, 0.0, -9.81),
         bodies: vec![body(
             "top",
@@ -293,6 +296,7 @@ pub fn chain(n: usize) -> ModelDef {
         joints.push(j);
     }
     ModelDef {
+        contact: Default::default(),
         gravity: Vec3::new(0.0, 0.0, -9.81),
         bodies,
         joints,
@@ -435,6 +439,7 @@ pub fn four_bar(theta1: f64, crank_rate: f64) -> ModelDef {
     );
     set_q(&mut j2, &[th3 - th2], &[0.0]);
     ModelDef {
+        contact: Default::default(),
         gravity: Vec3::new(0.0, -9.81, 0.0),
         bodies: vec![link("crank", a), link("coupler", b), link("rocker", c)],
         joints: vec![j0, j1, j2, close],

@@ -119,11 +119,16 @@ impl Model {
             body_torques,
             body_forces,
             naive_torque: false,
+            contact: super::contact::build(def),
         };
         build(&mut model, &joint_input)?;
         super::determinacy::check(&model)?;
+        if let Some(note) = super::contact::period_note(def, &settings) {
+            model.notes.push(note);
+        }
         model.reduced = covers(&model);
-        model.exact_reduced = exact_jacobian(&model);
+        // contact's Jacobian leaves out the coupling of two bodies through a feature
+        model.exact_reduced = exact_jacobian(&model) && model.contact.is_empty();
         Ok(model)
     }
 }

@@ -74,6 +74,7 @@ pub(crate) fn four_bar() -> ModelDef {
     let j1 = revolute(Some(0), 1, Vec3::new(a, 0.0, 0.0), Vec3::z(), th2 - th);
     let j2 = revolute(Some(1), 2, Vec3::new(b, 0.0, 0.0), Vec3::z(), th3 - th2);
     ModelDef {
+        contact: Default::default(),
         gravity: Vec3::new(0.0, -9.81, 0.0),
         bodies: vec![link(a), link(b), link(c)],
         joints: vec![j0, j1, j2, close],
@@ -109,6 +110,7 @@ pub(crate) fn hanging_chain(n: usize, axial: f64) -> ModelDef {
         ));
     }
     ModelDef {
+        contact: Default::default(),
         gravity: Vec3::new(0.0, 0.0, -9.81),
         bodies,
         joints,

@@ -34,6 +34,7 @@ fn model(joints: &[(Option<usize>, usize, bool)], free: &[usize]) -> ModelDef {
         angular_velocity: Vec3::zeros(),
     };
     ModelDef {
+        contact: Default::default(),
         gravity: Vec3::zeros(),
         bodies: (0..4).map(body).collect(),
         joints: joints.iter().enumerate().map(joint).collect(),

@@ -12,7 +12,8 @@
 //!   rotation increment, projected blocks), where the model's rows land in the linear system
 //!   (`sink`), and the M-orthogonal projection of velocities onto the admissible ones
 //!   (`projection`; it makes the initial rates consistent and the reported rates exact);
-//! - one-sided joint stops as an exact discrete gradient (`stops`);
+//! - one-sided joint stops as an exact discrete gradient (`stops`); contact with the ground and
+//!   between bodies: geometry (`contact`) and laws (`contact_law`);
 //! - the valid range of every parameter and solver setting (`ranges`), shared by the spec
 //!   check and the FMU;
 //! - test models shared by several layers' unit tests (`fixtures`).
@@ -22,6 +23,8 @@
 pub(crate) mod assemble;
 pub mod body;
 pub mod constraint;
+pub mod contact;
+pub(crate) mod contact_law;
 pub mod def;
 pub(crate) mod determinacy;
 pub(crate) mod error;

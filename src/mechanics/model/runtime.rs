@@ -167,6 +167,8 @@ pub struct Model {
     pub(crate) body_forces: Vec<(usize, usize)>,
     /// Test-only switch: naive torque representation `F_{d_i} = ½ m × d̄_i`.
     pub(crate) naive_torque: bool,
+    /// Contact: ground points and body–body features.
+    pub(crate) contact: super::contact::ContactRt,
 }
 
 /// Euler tensor of an inertia tensor: `E = ½ tr(J) I − J`.

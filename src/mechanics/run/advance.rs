@@ -90,7 +90,7 @@ fn trial(model: &Model, state: &mut State, h: f64) -> Result<StepStats, StepErro
         // a damper fed energy in through the backward stage: the step at order 2 (stage docs)
         let stages = model.settings().stages.max(3) as usize;
         stats.order2 = 1;
-        stats.stiff_damper = Some(j);
+        stats.stiff_damper = j;
         outcome = compose_from(model, state, h, Plan::Midpoint(stages), &mut stats);
     }
     match outcome {
@@ -123,6 +123,7 @@ fn compose_from(
     ws.vlo.copy_from_slice(&state.v_lo);
     ws.lam.copy_from_slice(&state.lam);
     ws.ang.copy_from_slice(&state.angles);
+    ws.bristle.copy_from_slice(&state.bristle);
     ws.work = state.work;
     ws.hist.copy_from_slice(&state.hist);
     ws.hprev = state.hprev;
@@ -149,6 +150,7 @@ fn commit(state: &mut State, h: f64, stats: &StepStats) {
     std::mem::swap(&mut state.v_lo, &mut ws.vlo);
     std::mem::swap(&mut state.lam, &mut ws.lam);
     std::mem::swap(&mut state.angles, &mut ws.ang);
+    std::mem::swap(&mut state.bristle, &mut ws.bristle);
     state.work = ws.work;
     std::mem::swap(&mut state.hist, &mut ws.hist);
     state.hprev = ws.hprev;

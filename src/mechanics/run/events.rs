@@ -1,7 +1,7 @@
-//! Joint-stop contacts as step ends under error control (`solver.rtol > 0`): a trial step
-//! across which a limited coordinate reaches one of its limits (enters contact) or leaves it
-//! is replaced by a step that ends where it does, so that no step straddles the kink of the
-//! stop force.
+//! Joint-stop and body contacts as step ends under error control (`solver.rtol > 0`): a trial
+//! step across which a limited coordinate reaches one of its limits (enters contact) or leaves
+//! it, or a contact point or feature touches or leaves (its gap changes sign), is replaced by a
+//! step that ends where it does, so that no step straddles the kink of a contact force.
 //!
 //! With the coordinate `t` (rad or m; `t₀` at the step start, `t₁` at the trial's end) and a
 //! limit `ℓ`, the signed penetration is `x = t − upper` or `x = lower − t`; a step crosses
@@ -12,12 +12,13 @@
 //! θ = x₀ / (x₀ − x₁) ∈ [0, 1)
 //! ```
 //!
-//! of the step. The earliest `θ` of all limits in `(LANDED, 1 − LANDED)` gives the landing step
+//! of the step (for a contact, `x = −gap`). The earliest `θ` of all limits and contacts in `(LANDED, 1 − LANDED)` gives the landing step
 //! `θh`; a crossing within `LANDED` of either end counts as landed already (the secant retry
 //! converges to it: each retry ends closer, and no step is shortened to a sliver).
 
 use crate::math::Vec3;
 use crate::mechanics::model::constraint::body_nodes;
+use crate::mechanics::model::contact::pair_nodes;
 use crate::mechanics::model::runtime::{DofRt, JointRt, Model};
 
 /// Fractions of a step within this of its start or end count as landed.
@@ -76,6 +77,30 @@ pub fn stop_crossing(
                 }
             }
         }
+    }
+    let mut consider = |x0: f64, x1: f64| {
+        if let Some(theta) = crossing(x0, x1) {
+            if theta > LANDED && theta < 1.0 - LANDED && first.is_none_or(|f| theta < f) {
+                first = Some(theta);
+            }
+        }
+    };
+    if let Some(g) = &model.contact.ground {
+        for p in &g.points {
+            let gap = |q: &[f64]| {
+                let n = body_nodes(q, p.body);
+                let x = n[0] + n[1] * p.x.x + n[2] * p.x.y + n[3] * p.x.z;
+                g.normal.dot(&x) - g.height - p.radius
+            };
+            consider(-gap(q0), -gap(q1));
+        }
+    }
+    for f in &model.contact.features {
+        let gap = |q: &[f64]| {
+            let (qa, qb) = pair_nodes(q, f);
+            f.gap(&f.invariants(&qa, &qb))
+        };
+        consider(-gap(q0), -gap(q1));
     }
     first
 }

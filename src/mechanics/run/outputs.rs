@@ -3,7 +3,9 @@
 //! ```text
 //! body:  r = φ − R c,  R = [d₁ d₂ d₃],  v = v̂_φ − Σᵢ cᵢ v̂_dᵢ,  w = ½ Σᵢ dᵢ × v̂_dᵢ   (v̂: projected)
 //! site:  r_s = r + R p,  R_s = R R_p,  v_s = v + w × R p,  w_s = w   (p, R_p: site in body)
-//! E = Σ ½ vₙᵀ M vₙ − m g·φ + springs + stops,   p = Σ m v_φ,   L = Σ (φ × m v_φ + Σᵢ dᵢ × pᵢ)
+//! E = Σ ½ vₙᵀ M vₙ − m g·φ + springs + stops + contact springs and bristles,
+//! p = Σ m v_φ,   L = Σ (φ × m v_φ + Σᵢ dᵢ × pᵢ)
+//! contact: per shape, its force and ground gap at the state (`model::contact::state_outputs`)
 //! ```
 // index loops over coupled fixed-size arrays read closer to the formulas than iterator chains
 #![allow(clippy::needless_range_loop)]
@@ -52,9 +54,13 @@ pub struct Outputs {
     pub l: Vec3,
     /// Largest constraint violation after the last step (internal and joint rows), 1 or m.
     pub constraint_residual: f64,
+    /// Per collision shape, in model order: its contact force and its gap to the ground.
+    pub contacts: Vec<ShapeContact>,
 }
 
 use crate::mechanics::model::constraint::{body_nodes, Nodes};
+use crate::mechanics::model::contact::state_outputs;
+pub use crate::mechanics::model::contact::ShapeContact;
 use crate::mechanics::model::joint::world_nodes;
 use crate::mechanics::model::runtime::{DofRt, Model};
 
@@ -114,6 +120,7 @@ impl Outputs {
                 })
                 .collect(),
             sites: vec![BodyOutput::default(); model.def().sites.len()],
+            contacts: vec![ShapeContact::default(); model.def().contact.shapes.len()],
             ..Self::default()
         }
     }
@@ -134,6 +141,7 @@ pub(crate) fn update(
     vp: &[f64],
     angles: &[f64],
     stiffness: &[f64],
+    bristle: &[f64],
     work: f64,
     out: &mut Outputs,
 ) {
@@ -216,6 +224,9 @@ pub(crate) fn update(
         o.rot = b.rot * site.frame.rotation;
         o.v = b.v + b.w.cross(&arm);
         o.w = b.w;
+    }
+    if !model.contact.is_empty() {
+        energy += state_outputs(&model.contact, q, vp, bristle, &mut out.contacts);
     }
     out.energy = energy;
     out.work = work;

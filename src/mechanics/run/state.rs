@@ -29,6 +29,8 @@ pub struct State {
     pub(crate) angles: Vec<f64>,
     /// Accumulated work of inputs minus damping dissipation, J.
     pub(crate) work: f64,
+    /// Contact friction bristles (3 per ground point, then per body–body feature), m.
+    pub(crate) bristle: Vec<f64>,
     /// Predictor history: difference tables of the stages' mean rates (see `Work::hist`).
     pub(crate) hist: Vec<f64>,
     /// Sizes of the stages of each table, newest first, s (0: none).
@@ -74,6 +76,7 @@ impl State {
             stiffness: def.joints.iter().map(|j| j.stiffness).collect(),
             outputs: Outputs::for_model(model),
             order2: (0, None),
+            bristle: vec![0.0; 3 * model.contact.bristles()],
             ws: Work::new(model),
             pw: ProjWork::new(model),
         };
@@ -96,6 +99,7 @@ impl State {
             &self.pw.vp,
             &self.angles,
             &self.stiffness,
+            &self.bristle,
             self.work,
             &mut self.outputs,
         );
@@ -195,6 +199,7 @@ impl State {
         self.lam.clone_from(&src.lam);
         self.angles.clone_from(&src.angles);
         self.work = src.work;
+        self.bristle.clone_from(&src.bristle);
         self.hist.clone_from(&src.hist);
         self.hprev = src.hprev;
         self.memory = src.memory;
@@ -242,6 +247,7 @@ impl State {
         out.extend_from_slice(&self.inputs);
         out.extend_from_slice(&self.damping);
         out.extend_from_slice(&self.stiffness);
+        out.extend_from_slice(&self.bristle);
         self.ctrl.write_f64(&mut out);
         out
     }
@@ -257,6 +263,7 @@ impl State {
             + self.inputs.len()
             + self.damping.len()
             + self.stiffness.len()
+            + self.bristle.len()
             + self.ctrl.snapshot_len()
     }
 
@@ -295,6 +302,7 @@ impl State {
         take(&mut self.inputs);
         take(&mut self.damping);
         take(&mut self.stiffness);
+        take(&mut self.bristle);
         self.ctrl.read_f64(&data[at..])?;
         self.t = t[0];
         self.lag = t[1];

@@ -19,6 +19,7 @@
 // index loops over coupled fixed-size arrays read closer to the formulas than iterator chains
 #![allow(clippy::needless_range_loop)]
 
+use super::contact::contact_finish;
 use super::joint_loads::actuator_input;
 use super::turn::{row_increment, turn_step};
 use super::work::{Held, Work};
@@ -117,6 +118,9 @@ pub(crate) fn finish(model: &Model, ws: &mut Work, held: &Held, h: f64) -> f64 {
             let m = Vec3::new(held.inputs[at], held.inputs[at + 1], held.inputs[at + 2]);
             work += m.dot(&read3(&ws.theta, 3 * tb));
         }
+    }
+    if !model.contact.is_empty() {
+        work += contact_finish(model, ws, h);
     }
     work
 }

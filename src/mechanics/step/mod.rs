@@ -4,7 +4,8 @@
 //!   memory;
 //! - the scaled EM residual and its Jacobian: `newton` (rows and bodies, the multiplier form),
 //!   `body_terms` (inertia and body loads), `joint_loads` (actuators, springs, dampers), `turn`
-//!   (the exact discrete gradient of a joint angle), `increment` (the multiplier form's linear
+//!   (the exact discrete gradient of a joint angle), `contact` (ground and body–body contact
+//!   forces, their work and the friction bristles), `increment` (the multiplier form's linear
 //!   solve and update);
 //! - `reduced`: Newton on the joint increments for trees (the discrete null-space method);
 //! - `predictor` (the Newton start from the previous stages), `finish` (velocity update, work
@@ -16,6 +17,7 @@
 pub(crate) mod body_terms;
 #[cfg(test)]
 mod border_tests;
+pub(crate) mod contact;
 pub(crate) mod error;
 pub(crate) mod finish;
 pub(crate) mod identity;

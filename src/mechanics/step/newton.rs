@@ -26,6 +26,7 @@
 #![allow(clippy::needless_range_loop)]
 
 use super::body_terms::project_bodies;
+use super::contact::contact_forces;
 pub(crate) use super::increment::{resolve, solve, update};
 use super::joint_loads::{joint_loads, loaded, Acc, Pair};
 pub(crate) use super::work::{Held, Mode, Norms, Work};
@@ -62,6 +63,9 @@ pub(crate) fn evaluate(model: &Model, ws: &mut Work, held: &Held, h: f64, mode: 
         }
     }
     inertia_and_forces(model, ws, held, h, jac);
+    if !model.contact.is_empty() {
+        contact_forces(model, ws, h, jac);
+    }
     // joint rows: μ ∇g(q̄) into R̃, g(q) residual, Jacobian columns/rows and node couplings
     let mut res = 0.0_f64;
     let gscale = 1.0 / model.lc.min(1.0);

@@ -50,6 +50,7 @@ fn joint(
 /// a spherical-jointed body on the free body, body torque and force loads, gravity.
 pub(crate) fn sample() -> ModelDef {
     ModelDef {
+        contact: Default::default(),
         gravity: Vec3::new(0.0, 0.0, -9.81),
         bodies: vec![
             body("a", 2.0, [0.3, 0.4, 0.5], Vec3::zeros()),

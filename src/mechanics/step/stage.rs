@@ -53,7 +53,8 @@ pub struct StepStats {
     /// Steps of an order-4 run redone as order-2 stages because a damper would have fed energy
     /// in (module docs): 0 or 1 per step.
     pub order2: usize,
-    /// The joint whose dampers gave energy in the composed step that was redone at order 2.
+    /// The joint whose dampers gave energy in the composed step that was redone at order 2
+    /// (`None` with `order2 = 1`: the contacts').
     pub stiff_damper: Option<usize>,
 }
 
@@ -71,9 +72,9 @@ pub(crate) enum Plan {
 pub(crate) enum Composed {
     /// The step is in the workspace.
     Done,
-    /// The composed step's dampers of this joint gave energy: redo it with
-    /// [`Plan::Midpoint`] (the workspace is mid-step).
-    FedEnergy(usize),
+    /// The composed step's dampers of this joint (`None`: the contacts) gave energy: redo it
+    /// with [`Plan::Midpoint`] (the workspace is mid-step).
+    FedEnergy(Option<usize>),
 }
 
 /// Triple-jump coefficient `γ₁ = 1/(2 − 2^{1/3})`.
@@ -137,9 +138,11 @@ pub(crate) fn compose(
     let stages = &fractions[..count];
     let order4 = plan == Plan::Configured && count > 1;
     ws.loss.fill(0.0);
-    // only dampers can give energy back: models without any skip the check
+    ws.contact_loss = 0.0;
+    // only dampers and contacts can give energy back: models without any skip the check
     let guard = order4
         && (held.damping.iter().any(|&c| c != 0.0)
+            || !model.contact.is_empty()
             || model
                 .joints
                 .iter()
@@ -150,8 +153,12 @@ pub(crate) fn compose(
         robust_stage(model, ws, held, g * h, Some(table), 0, stats)?;
     }
     if guard {
-        if let Some(j) = fed_energy(ws, kinetic0.max(kinetic(model, &ws.vn))) {
-            return Ok(Composed::FedEnergy(j));
+        let kinetic = kinetic0.max(kinetic(model, &ws.vn));
+        if let Some(j) = fed_energy(ws, kinetic) {
+            return Ok(Composed::FedEnergy(Some(j)));
+        }
+        if -ws.contact_loss > GAIN_SHARE * kinetic {
+            return Ok(Composed::FedEnergy(None));
         }
     }
     Ok(Composed::Done)
@@ -325,6 +332,7 @@ fn stage(
         (*vn, *vlo) = two_sum(*vn, c);
     }
     ws.qn.copy_from_slice(&ws.q);
+    ws.bristle.copy_from_slice(&ws.bristle1);
     let ih2 = 1.0 / (h * h);
     for k in 0..ws.mu.len() {
         ws.lam[k] = ws.mu[k] * ih2;

@@ -102,6 +102,13 @@ pub(crate) struct Work {
     /// Per joint, the energy its dampers (viscous and stop) took over the stages of the
     /// current step so far, J (a backward stage adds a negative amount).
     pub loss: Vec<f64>,
+    /// Energy the contacts dissipated over the stages of the current step so far, J (a
+    /// backward stage adds a negative amount).
+    pub contact_loss: f64,
+    /// Contact bristles at the stage's start (3 per ground point, then per feature), m.
+    pub bristle: Vec<f64>,
+    /// Contact bristles at the stage's end (`contact_finish`), m.
+    pub bristle1: Vec<f64>,
     /// Predictor history: backward differences of the mean rates `(Δφ/h, θ/h)` of the last
     /// [`HISTORY`] stages, `[table][difference][body][6]` (see `predictor`).
     pub hist: Vec<f64>,
@@ -185,6 +192,9 @@ impl Work {
             ang: model.angles0.clone(),
             work: 0.0,
             loss: vec![0.0; model.joints.len()],
+            contact_loss: 0.0,
+            bristle: vec![0.0; 3 * model.contact.bristles()],
+            bristle1: vec![0.0; 3 * model.contact.bristles()],
             hist: vec![0.0; history_len(model)],
             hprev: [[0.0; HISTORY]; TABLES],
             memory: Memory::default(),

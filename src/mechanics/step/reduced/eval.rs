@@ -13,6 +13,7 @@
 #![allow(clippy::needless_range_loop)]
 
 use super::super::body_terms::body_rows;
+use super::super::contact::contact_forces;
 use super::super::joint_loads::{joint_loads, loaded, Acc, Pair};
 use super::super::newton::{apply_joint, inertia_and_forces};
 use super::super::work::{Held, Work};
@@ -60,6 +61,9 @@ pub(crate) fn evaluate(
     let hh = 0.5 * h * h;
     ws.set_midpoint();
     inertia_and_forces(model, ws, held, h, jac);
+    if !model.contact.is_empty() {
+        contact_forces(model, ws, h, jac);
+    }
     let mut acc = Acc::new();
     for (j, jt) in model.joints.iter().enumerate() {
         let c = jt.child;
