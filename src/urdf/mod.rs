@@ -31,6 +31,7 @@
 //! link "forearm" does not exist`), all at once.
 
 mod lower;
+mod mass;
 mod names;
 mod options;
 mod robot;
@@ -60,11 +61,13 @@ pub fn import(
     let root = xml::parse(text)
         .map_err(|(line, msg)| fail(vec![Problem::new(format!("line {line}"), msg)]))?;
     let mut problems = Vec::new();
-    let robot = robot::robot(&root, &mut problems);
+    let mut warnings = Vec::new();
+    let robot = robot::robot(&root, &mut problems, &mut warnings);
     let name = std::path::Path::new(origin)
         .file_name()
         .map_or_else(|| origin.to_string(), |f| f.to_string_lossy().into_owned());
-    let (spec, outcome) = lower::spec(&robot, opts, &name, &mut problems);
+    let (spec, mut outcome) = lower::spec(&robot, opts, &name, &mut problems);
+    outcome.warnings = warnings;
     if problems.is_empty() {
         Ok((spec, outcome))
     } else {

@@ -1,6 +1,7 @@
 //! The imported spec as editable TOML: the spec's own serialisation (numbers in their shortest
 //! round-trip form, `1e-10` rather than `0.0000000001`, so reading it back gives the same spec and
-//! the same FMU), with a header and a comment before every body, joint and site naming the URDF
+//! the same FMU), with a header (the notes, and a `# warning:` line for every `<visual>` or
+//! `<collision>` dropped) and a comment before every body, joint and site naming the URDF
 //! elements it came from.
 
 use super::lower::Outcome;
@@ -20,6 +21,9 @@ pub fn to_toml(spec: &Spec, outcome: &Outcome) -> Result<String, String> {
     out.push_str("# give the same FMU as long as nothing is changed.\n");
     for n in &outcome.notes {
         out.push_str(&format!("# note: {n}\n"));
+    }
+    for w in &outcome.warnings {
+        out.push_str(&format!("# warning: {w}\n"));
     }
     out.push('\n');
     let (mut b, mut j, mut k) = (0, 0, 0);
