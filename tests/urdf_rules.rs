@@ -299,10 +299,16 @@ fn an_impossible_rigid_body_is_refused_naming_its_impossible_links() {
 #[test]
 fn legal_inputs_near_the_rule_are_accepted() {
     let u = "welded_inertia.urdf";
+    // the sensor massless with a zero inertia, or without <inertial> (kept: a massless body)
     let zero = text(u).replace(
-        "<inertia ixx=\"1e-9\" iyy=\"1e-9\" izz=\"2.0000001e-9\"",
-        "<inertia ixx=\"0\" iyy=\"0\" izz=\"0\"",
+        "<mass value=\"0.001\"/>\n      <inertia ixx=\"1e-9\" iyy=\"1e-9\" izz=\"2.0000001e-9\"",
+        "<mass value=\"0\"/>\n      <inertia ixx=\"0\" iyy=\"0\" izz=\"0\"",
     );
+    let bare = text(u).replace(
+        "<inertial>\n      <mass value=\"0.001\"/>\n      <inertia ixx=\"1e-9\" iyy=\"1e-9\" izz=\"2.0000001e-9\" ixy=\"0\" ixz=\"0\" iyz=\"0\"/>\n    </inertial>",
+        "",
+    );
+    assert!(zero != text(u) && bare != text(u));
     // the base (welded to the world) with an impossible inertia: it does not move
     let world = text(u).replace(
         "<inertial><mass value=\"1\"/><inertia ixx=\"0.01\" iyy=\"0.01\" izz=\"0.01\"",
@@ -313,11 +319,15 @@ fn legal_inputs_near_the_rule_are_accepted() {
         "<link name=\"post\"><inertial><mass value=\"1\"/><inertia ixx=\"1\" iyy=\"1\" izz=\"3\" ixy=\"0\" ixz=\"0\" iyz=\"0\"/></inertial></link>\n  <joint name=\"post_joint\" type=\"fixed\"><parent link=\"base_link\"/><child link=\"post\"/></joint>\n  <joint name=\"shoulder\" type=\"revolute\">\n    <parent link=\"base_link\"/>",
     );
     assert_ne!(world_kept, world);
-    for t in [&zero, &world, &world_kept] {
+    for t in [&zero, &bare, &world, &world_kept] {
         for opts in [ImportOptions::default(), KEEP] {
             let (spec, out) = import(t, u, &opts).unwrap_or_else(|e| panic!("{e}"));
             spec.validate(u).unwrap_or_else(|e| panic!("{e}"));
-            if t == &world_kept {
+            if t == &zero || t == &bare {
+                assert!(!out.notes.join("\n").contains("link 'sensor'"));
+            }
+            // kept, the post is a body on a fixed joint to the world, massless
+            if t == &world_kept && opts.keep_fixed {
                 let notes = out.notes.join("\n");
                 assert!(
                     notes.contains("link 'post': its inertia violates the triangle inequality"),

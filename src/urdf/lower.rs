@@ -28,6 +28,8 @@ pub struct Outcome {
     pub renamed: Vec<(&'static str, String, String)>,
     /// `(identifier, URDF link names merged into it)` per body, in the spec's body order.
     pub merged: Vec<(String, Vec<String>)>,
+    /// The URDF line of each body's (first) link and of each joint, in the spec's orders.
+    pub lines: (Vec<usize>, Vec<usize>),
     /// What was dropped from the robot because it could not be read (geometry only: a
     /// `<visual>` or `<collision>`), each with its line.
     pub warnings: Vec<String>,
@@ -211,6 +213,7 @@ pub(crate) fn spec(
         });
         parts.push(Vec::new());
         out.merged.push((id, vec![original.clone()]));
+        out.lines.0.push(robot.links[link].line);
         spec.body.len() - 1
     };
     let free_root = !world_root && opts.base == Base::Floating;
@@ -367,6 +370,7 @@ pub(crate) fn spec(
             } else {
                 format!("URDF joint \"{}\"", j.name)
             };
+            out.lines.1.push(j.line);
             spec.joint.push(JointSpec {
                 name: id,
                 kind,
@@ -397,11 +401,12 @@ pub(crate) fn spec(
         }
     }
     if spec.body.is_empty() && problems.is_empty() {
+        let r = &robot.links[root];
         problems.push(Problem::new(
-            "",
+            at(r.line, &format!("link \"{}\"", r.name)),
             format!(
                 "nothing moves: every link is welded to the world through root link '{}'; run the command again with --floating-base to free it",
-                robot.links[root].name
+                r.name
             ),
         ));
     }

@@ -173,13 +173,22 @@ pub(super) struct Placement {
     pub in_cluster: Iso,
 }
 
-/// The link names of `members`, each between `quote`s, joined.
+/// The link names of `members`, each between `quote`s, joined; past four, how many more.
 fn names(robot: &Robot, members: &[usize], quote: char) -> String {
+    const SHOWN: usize = 4;
     let q: Vec<String> = members
         .iter()
+        .take(SHOWN)
         .map(|&l| format!("{quote}{}{quote}", robot.links[l].name))
         .collect();
-    q.join(", ")
+    match members.len().saturating_sub(SHOWN) {
+        0 => q.join(", "),
+        more => format!(
+            "{} and {more} more link{}",
+            q.join(", "),
+            if more == 1 { "" } else { "s" }
+        ),
+    }
 }
 
 /// Gives every body its parts: each link's inertial in the frame of the body that carries it.
@@ -187,8 +196,8 @@ fn names(robot: &Robot, members: &[usize], quote: char) -> String {
 /// The rule (the same merged and kept): a link whose own inertial is impossible but which is
 /// welded by fixed joints into a rigid cluster that is possible is accepted with a note; a
 /// cluster that is impossible is refused, naming its impossible links at the line of their
-/// `<inertia>`. A link welded to the world does not move: its inertial is dropped when
-/// impossible. Kept links (`keep_fixed`): a violation at round-off, `max(0, −λ_min(E)) ≤ 1e-12`
+/// `<inertia>`. A link welded to the world does not move: merged, its inertial goes nowhere;
+/// kept, its body is massless when the inertial is impossible (with a note). Kept links (`keep_fixed`): a violation at round-off, `max(0, −λ_min(E)) ≤ 1e-12`
 /// of the cluster's scale (the largest entry of its merged tensor or of a member's), is read as
 /// zero (`E`'s negative eigenvalues set to zero) and the link keeps its inertial; a larger one is
 /// carried by the cluster's first body (the one on the cluster's moving joint, or the free base),
@@ -213,22 +222,15 @@ pub(super) fn distribute(
         if p.cluster.is_some() {
             continue;
         }
+        // a kept body on a fixed joint to the world (merged: the world takes the inertial)
+        let Some(b) = p.body else { continue };
         let own = placed(inertial, &p.frame);
-        let why = impossible(&own);
-        if let Some(why) = &why {
-            notes.push(format!(
-                "link '{}': its inertia {why}; it is welded to the world and does not move: {}",
-                robot.links[l].name,
-                if p.body.is_some() {
-                    "its body is kept massless"
-                } else {
-                    "its inertial is not used"
-                }
-            ));
-        }
-        // a kept body on a fixed joint to the world
-        if let (Some(b), None) = (p.body, why) {
-            parts[b].push(own);
+        match impossible(&own) {
+            None => parts[b].push(own),
+            Some(why) => notes.push(format!(
+                "link '{}': its inertia {why}; it is welded to the world and does not move: its body is kept massless",
+                robot.links[l].name
+            )),
         }
     }
     let mut firsts: Vec<usize> = placement

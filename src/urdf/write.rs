@@ -107,8 +107,8 @@ fn shortest_numbers(line: &str) -> String {
 }
 
 /// Problems of an imported spec (validated after import) told in the URDF's terms: the path
-/// `body[i]…` becomes `link "<URDF name>" (body[i]…)`, `joint[i]…` becomes
-/// `joint "<URDF name>" (joint[i]…)`.
+/// `body[i]…` becomes `line L: link "<URDF name>" (body[i]…)`, `joint[i]…` becomes
+/// `line L: joint "<URDF name>" (joint[i]…)`.
 #[must_use]
 pub fn in_urdf_terms(
     mut errors: crate::spec::SpecErrors,
@@ -140,8 +140,15 @@ pub fn in_urdf_terms(
             _ => None,
         };
         if let Some(name) = original {
-            let what = if kind == "body" { "link" } else { "joint" };
-            p.path = format!("{what} \"{name}\" ({})", p.path);
+            let (what, lines) = if kind == "body" {
+                ("link", &outcome.lines.0)
+            } else {
+                ("joint", &outcome.lines.1)
+            };
+            let line = lines
+                .get(i)
+                .map_or_else(String::new, |l| format!("line {l}: "));
+            p.path = format!("{line}{what} \"{name}\" ({})", p.path);
         }
     }
     errors
