@@ -415,6 +415,18 @@ fn every_command_takes_the_import_options() {
     // without the option nothing moves, and the message names the option of this command
     let (ok, _, err) = run(&["check", u], d);
     assert!(!ok);
+    // kept links welded to the world move no more than merged ones
+    let welded = data("fixed_dynamics.urdf");
+    let welded = std::fs::read_to_string(welded)
+        .unwrap()
+        .replace("type=\"revolute\"", "type=\"fixed\"");
+    std::fs::write(d.join("welded.urdf"), welded).unwrap();
+    for keep in [&[][..], &["--keep-fixed"][..]] {
+        let mut args = vec!["check", "welded.urdf"];
+        args.extend(keep);
+        let (ok, _, e) = run(&args, d);
+        assert!(!ok && e.contains("nothing moves"), "{args:?}: {e}");
+    }
     assert!(
         err.contains("nothing moves: every link is welded to the world through root link 'box'; run the command again with --floating-base to free it"),
         "{err}"

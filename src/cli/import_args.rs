@@ -7,7 +7,7 @@ use triad::urdf::{Base, ImportOptions};
 
 /// How a `.urdf` MODEL is imported (the same options and meaning as `triad import`).
 #[derive(Clone, Debug, Default, Args)]
-#[command(next_help_heading = "URDF import (when MODEL is a .urdf)")]
+#[command(next_help_heading = "URDF import (a .urdf only)")]
 pub struct ImportArgs {
     /// Weld the base to the world even if the URDF declares it floating.
     #[arg(long, conflicts_with = "floating_base")]

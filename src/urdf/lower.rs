@@ -400,7 +400,9 @@ pub(crate) fn spec(
             });
         }
     }
-    if spec.body.is_empty() && problems.is_empty() {
+    // (kept links welded to the world are bodies, but they do not move either)
+    let moving = host.iter().flatten().any(|p| p.cluster.is_some());
+    if !moving && problems.is_empty() {
         let r = &robot.links[root];
         problems.push(Problem::new(
             at(r.line, &format!("link \"{}\"", r.name)),
