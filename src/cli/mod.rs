@@ -72,7 +72,8 @@ pub enum Command {
     /// welded; a floating joint: free); a bare root is welded to the world (as Pinocchio and
     /// MuJoCo do). Links on fixed joints are merged into their parents and become sites.
     /// Revolute and prismatic `<limit lower upper>` become joint stops and `effort` clamps the
-    /// actuator input (placeholders lower = upper or effort = 0 are ignored).
+    /// actuator input (placeholders lower = upper or effort = 0 are ignored). A `<visual>` or
+    /// `<collision>` that cannot be read is dropped with a warning naming its line.
     Import {
         /// Robot description (.urdf).
         robot: PathBuf,

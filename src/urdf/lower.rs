@@ -15,8 +15,8 @@ use super::options::{Base, ImportOptions};
 use super::robot::{at, Geometry, JointType, Robot, Shape};
 use crate::math::{rpy_to_matrix, Vec3};
 use crate::spec::{
-    BodySpec, InertiaSpec, JointKind, JointSpec, OrientationSpec, OriginSpec, Problem, SiteSpec,
-    Spec, VisualSpec,
+    did_you_mean, BodySpec, InertiaSpec, JointKind, JointSpec, OrientationSpec, OriginSpec,
+    Problem, SiteSpec, Spec, VisualSpec,
 };
 
 /// What the import produced besides the spec.
@@ -119,9 +119,19 @@ pub(crate) fn spec(
                 j.name
             ));
         } else {
+            // a joint named like it with the mimicking joint's prefix (`Left_` + `index_q1`)
+            let prefixed = robot.joints.iter().find(|c| {
+                c.name
+                    .strip_suffix(other.as_str())
+                    .is_some_and(|pre| !pre.is_empty() && j.name.starts_with(pre))
+            });
+            let hint = prefixed.map_or_else(
+                || did_you_mean(other, robot.joints.iter().map(|c| c.name.as_str())),
+                |c| format!("; did you mean \"{}\"?", c.name),
+            );
             problems.push(Problem::new(
                 at(*line, &format!("joint \"{}\"", j.name)),
-                format!("<mimic joint=\"{other}\">: there is no joint \"{other}\""),
+                format!("<mimic joint=\"{other}\">: there is no joint \"{other}\"{hint}"),
             ));
         }
     }
