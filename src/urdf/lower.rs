@@ -28,8 +28,10 @@ pub struct Outcome {
     pub renamed: Vec<(&'static str, String, String)>,
     /// `(identifier, URDF link names merged into it)` per body, in the spec's body order.
     pub merged: Vec<(String, Vec<String>)>,
-    /// The URDF line of each body's (first) link and of each joint, in the spec's orders.
-    pub lines: (Vec<usize>, Vec<usize>),
+    /// The URDF line of each body's (first) link, in the spec's body order.
+    pub body_lines: Vec<usize>,
+    /// The URDF line of each joint, in the spec's joint order.
+    pub joint_lines: Vec<usize>,
     /// What was dropped from the robot because it could not be read (geometry only: a
     /// `<visual>` or `<collision>`), each with its line.
     pub warnings: Vec<String>,
@@ -223,7 +225,7 @@ pub(crate) fn spec(
         });
         parts.push(Vec::new());
         out.merged.push((id, vec![original.clone()]));
-        out.lines.0.push(robot.links[link].line);
+        out.body_lines.push(robot.links[link].line);
         spec.body.len() - 1
     };
     let free_root = !world_root && opts.base == Base::Floating;
@@ -380,7 +382,7 @@ pub(crate) fn spec(
             } else {
                 format!("URDF joint \"{}\"", j.name)
             };
-            out.lines.1.push(j.line);
+            out.joint_lines.push(j.line);
             spec.joint.push(JointSpec {
                 name: id,
                 kind,

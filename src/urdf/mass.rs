@@ -197,13 +197,15 @@ fn names(robot: &Robot, members: &[usize], quote: char) -> String {
 /// welded by fixed joints into a rigid cluster that is possible is accepted with a note; a
 /// cluster that is impossible is refused, naming its impossible links at the line of their
 /// `<inertia>`. A link welded to the world does not move: merged, its inertial goes nowhere;
-/// kept, its body is massless when the inertial is impossible (with a note). Kept links (`keep_fixed`): a violation at round-off, `max(0, −λ_min(E)) ≤ 1e-12`
-/// of the cluster's scale (the largest entry of its merged tensor or of a member's), is read as
-/// zero (`E`'s negative eigenvalues set to zero) and the link keeps its inertial; a larger one is
-/// carried by the cluster's first body (the one on the cluster's moving joint, or the free base),
-/// the link staying a massless body on its fixed joint; if that body is still impossible, it
-/// carries every inertial of the cluster. The cluster's mass, centre of mass and inertia are
-/// unchanged, so is the motion.
+/// kept, its body is massless when the inertial is impossible (with a note).
+///
+/// Kept links (`keep_fixed`): a violation at round-off, `max(0, −λ_min(E)) ≤ 1e-12` of the
+/// cluster's scale (the largest entry of its merged tensor or of a member's), is read as zero
+/// (`E`'s negative eigenvalues set to zero) and the link keeps its inertial; a larger one is
+/// carried by the cluster's first body (the one on the cluster's moving joint, or the free
+/// base), the link staying a massless body on its fixed joint; if that body is still
+/// impossible, it carries every inertial of the cluster. The cluster's mass, centre of mass
+/// and inertia are unchanged, so is the motion.
 #[allow(clippy::too_many_lines)]
 pub(super) fn distribute(
     robot: &Robot,

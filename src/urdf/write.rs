@@ -141,9 +141,9 @@ pub fn in_urdf_terms(
         };
         if let Some(name) = original {
             let (what, lines) = if kind == "body" {
-                ("link", &outcome.lines.0)
+                ("link", &outcome.body_lines)
             } else {
-                ("joint", &outcome.lines.1)
+                ("joint", &outcome.joint_lines)
             };
             let line = lines
                 .get(i)
