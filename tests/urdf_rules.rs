@@ -505,6 +505,13 @@ fn every_command_takes_the_import_options() {
         d,
     );
     assert!(ok, "{err}");
+    // without the run's options: another model, and the message says what to give
+    let (ok, _, err) = run(&["animate", arm, "arm.csv", "-o", "other.html"], d);
+    assert!(
+        !ok && err.contains("a .urdf is replayed as imported with the options of the run"),
+        "{err}"
+    );
+    assert!(!d.join("other.html").exists());
     // not for a spec: refused, nothing written
     let (ok, _, err) = run(&["check", "double_pendulum", "--floating-base"], d);
     assert!(

@@ -5,11 +5,11 @@ use std::path::{Path, PathBuf};
 
 use clap::Args;
 use triad::spec::Spec;
-use triad::viewer::{self, Options, Page, Recording, ResultTable};
+use triad::viewer::{self, Options, Page, Recording, ResultTable, ViewerError};
 
 use super::error::CliError;
 use super::import_args::ImportArgs;
-use super::load::load;
+use super::load::{is_urdf, load};
 use super::output::AtomicFile;
 
 /// Options of `triad animate`.
@@ -86,7 +86,14 @@ pub fn run(args: &AnimateArgs) -> Result<(), CliError> {
         &args.result,
         &opts,
     )
-    .map_err(|e| e.to_string())?;
+    .map_err(|e| match e {
+        // a URDF imported otherwise than for the run gives other bodies: say how to match it
+        ViewerError::OtherModel { .. } if is_urdf(Path::new(&args.model)) => format!(
+            "{e}; a .urdf is replayed as imported with the options of the run \
+             (--floating-base, --fixed-base, --keep-fixed)"
+        ),
+        e => e.to_string(),
+    })?;
     let out = args
         .output
         .clone()
