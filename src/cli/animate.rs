@@ -5,10 +5,11 @@ use std::path::{Path, PathBuf};
 
 use clap::Args;
 use triad::spec::Spec;
-use triad::viewer::{self, Options, Page, Recording, ResultTable};
+use triad::viewer::{self, Options, Page, Recording, ResultTable, ViewerError};
 
 use super::error::CliError;
-use super::load::load;
+use super::import_args::ImportArgs;
+use super::load::{is_urdf, load};
 use super::output::AtomicFile;
 
 /// Options of `triad animate`.
@@ -34,6 +35,10 @@ pub struct AnimateArgs {
     /// last rows are always kept).
     #[arg(long, value_name = "N", default_value_t = 100.0)]
     pub fps: f64,
+    /// How a .urdf MODEL is imported: as for the run the result comes from (a result of a run
+    /// with --floating-base is replayed with --floating-base).
+    #[command(flatten)]
+    pub urdf: ImportArgs,
 }
 
 /// The folder a model's relative mesh paths start from: the model file's folder, a model
@@ -70,7 +75,7 @@ pub fn run(args: &AnimateArgs) -> Result<(), CliError> {
     if !(args.fps > 0.0 && args.fps.is_finite()) {
         return Err(format!("--fps must be a positive number (got {})", args.fps).into());
     }
-    let spec = load(&args.model)?;
+    let spec = load(&args.model, &args.urdf)?;
     let opts = Options {
         max_rate: args.fps,
         package_dirs: args.package_path.clone(),
@@ -81,7 +86,14 @@ pub fn run(args: &AnimateArgs) -> Result<(), CliError> {
         &args.result,
         &opts,
     )
-    .map_err(|e| e.to_string())?;
+    .map_err(|e| match e {
+        // a URDF imported otherwise than for the run gives other bodies: say how to match it
+        ViewerError::OtherModel { .. } if is_urdf(Path::new(&args.model)) => format!(
+            "{e}; a .urdf is replayed as imported with the options of the run \
+             (--floating-base, --fixed-base, --keep-fixed)"
+        ),
+        e => e.to_string(),
+    })?;
     let out = args
         .output
         .clone()

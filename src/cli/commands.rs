@@ -6,12 +6,13 @@ use triad::mechanics::Model;
 use triad::variables::{Causality, VarType, VariableTable};
 
 use super::error::CliError;
-use super::load::{is_urdf, load, load_noted, load_urdf};
-use triad::urdf::ImportOptions;
+use super::import_args::ImportArgs;
+use super::load::{is_urdf, load, load_noted, load_urdf, no_import_options};
 
-/// Validates MODEL; prints `ok`, a summary and the mechanics' notes. Writes nothing.
-pub fn check(model: &str) -> Result<(), CliError> {
-    let (spec, import_notes) = load_noted(model, &ImportOptions::default())?;
+/// Validates MODEL (a URDF imported as `urdf` asks); prints `ok`, a summary and the notes of
+/// the import and of the mechanics. Writes nothing.
+pub fn check(model: &str, urdf: &ImportArgs) -> Result<(), CliError> {
+    let (spec, import_notes) = load_noted(model, urdf)?;
     let (def, settings) = spec.lower()?;
     let built = Model::new(&def, settings).map_err(|e| format!("{model}: {e}"))?;
     let table = VariableTable::new(&def, &settings).with_labels(&spec.labels());
@@ -43,8 +44,8 @@ fn plural(n: usize, one: &str, many: &str) -> String {
 }
 
 /// Prints the variable table with aligned columns.
-pub fn describe(model: &str) -> Result<(), CliError> {
-    let spec = load(model)?;
+pub fn describe(model: &str, urdf: &ImportArgs) -> Result<(), CliError> {
+    let spec = load(model, urdf)?;
     let (def, settings) = spec.lower()?;
     let table = VariableTable::new(&def, &settings).with_labels(&spec.labels());
     let rows: Vec<[String; 7]> = table
@@ -103,7 +104,12 @@ pub fn describe(model: &str) -> Result<(), CliError> {
 }
 
 /// Validates MODEL, then packages its FMU.
-pub fn build(model: &Path, output: Option<&Path>, platforms: Option<&str>) -> Result<(), CliError> {
+pub fn build(
+    model: &Path,
+    output: Option<&Path>,
+    platforms: Option<&str>,
+    urdf: &ImportArgs,
+) -> Result<(), CliError> {
     let selection = match platforms {
         Some(text) => triad::platforms::Selection::parse(text)?,
         None => triad::platforms::Selection::Found,
@@ -127,8 +133,9 @@ pub fn build(model: &Path, output: Option<&Path>, platforms: Option<&str>) -> Re
         model
     };
     let spec = if is_urdf(model) {
-        load(&model.to_string_lossy())?
+        load(&model.to_string_lossy(), urdf)?
     } else {
+        no_import_options(&model.to_string_lossy(), urdf)?;
         triad::spec::Spec::from_path(model)?
     };
     let out = output.map_or_else(
@@ -152,12 +159,12 @@ pub fn build(model: &Path, output: Option<&Path>, platforms: Option<&str>) -> Re
 
 /// `triad import ROBOT.urdf`: writes the equivalent spec (TOML) to `output`, or to standard
 /// output; nothing is written when the URDF has a problem.
-pub fn import(robot: &Path, output: Option<&Path>, opts: &ImportOptions) -> Result<(), CliError> {
+pub fn import(robot: &Path, output: Option<&Path>, urdf: &ImportArgs) -> Result<(), CliError> {
     let name = robot.to_string_lossy();
     if !is_urdf(robot) {
         return Err(format!("{name}: import reads a .urdf file").into());
     }
-    let (spec, outcome) = load_urdf(&name, opts)?;
+    let (spec, outcome) = load_urdf(&name, &urdf.options())?;
     let toml = triad::urdf::to_toml(&spec, &outcome).map_err(|e| format!("{name}: {e}"))?;
     match output {
         Some(out) => {

@@ -5,24 +5,49 @@ use std::path::Path;
 use triad::spec::{bundled, Format, Spec, SpecErrors};
 use triad::urdf::{self, ImportOptions};
 
-/// Loads MODEL: a spec file, a `.urdf` (imported with `opts`), a folder holding `spec.toml`,
+use super::import_args::ImportArgs;
+
+/// Loads MODEL: a spec file, a `.urdf` (imported as `urdf` asks), a folder holding `spec.toml`,
 /// or, when no such file exists and MODEL has no extension, the shipped model of that name.
-/// Returns the validated spec and the import's notes (none for a spec).
-pub fn load_noted(model: &str, opts: &ImportOptions) -> Result<(Spec, Vec<String>), SpecErrors> {
+/// Returns the validated spec and the import's notes (none for a spec). Import options given
+/// with a MODEL that is not a URDF are an error.
+pub fn load_noted(model: &str, urdf: &ImportArgs) -> Result<(Spec, Vec<String>), SpecErrors> {
     if is_urdf(Path::new(model)) {
-        return load_urdf(model, opts).map(|(spec, outcome)| (spec, outcome.notes));
+        return load_urdf(model, &urdf.options()).map(|(spec, outcome)| (spec, outcome.notes));
     }
-    load(model).map(|s| (s, Vec::new()))
+    no_import_options(model, urdf)?;
+    load_spec(model).map(|s| (s, Vec::new()))
+}
+
+/// Refuses import options for a MODEL that is not a URDF (they would change nothing).
+pub fn no_import_options(model: &str, urdf: &ImportArgs) -> Result<(), SpecErrors> {
+    let given = urdf.given();
+    if given.is_empty() {
+        return Ok(());
+    }
+    Err(SpecErrors::single(
+        model,
+        "",
+        format!(
+            "{} {} for a .urdf MODEL only (URDF import); this MODEL is not one",
+            given.join(", "),
+            if given.len() == 1 { "is" } else { "are" }
+        ),
+    ))
 }
 
 /// Reads, imports and validates the URDF `model` (problems of the imported spec in the URDF's
-/// terms); the spec and what the import says of it.
+/// terms); the spec and what the import says of it. The geometry dropped (`<visual>` or
+/// `<collision>` that cannot be read) is printed to standard error as warnings.
 pub fn load_urdf(model: &str, opts: &ImportOptions) -> Result<(Spec, urdf::Outcome), SpecErrors> {
     let text = std::fs::read_to_string(model)
         .map_err(|e| SpecErrors::single(model, "", format!("cannot read the file: {e}")))?;
     let (spec, outcome) = urdf::import(&text, model, opts)?;
     spec.validate(model)
         .map_err(|e| urdf::in_urdf_terms(e, &spec, &outcome))?;
+    for w in &outcome.warnings {
+        eprintln!("warning: {model}: {w}");
+    }
     Ok((spec, outcome))
 }
 
@@ -33,12 +58,14 @@ pub fn is_urdf(path: &Path) -> bool {
         .is_some_and(|e| e.eq_ignore_ascii_case("urdf"))
 }
 
-/// Loads MODEL as [`load_noted`] with the default import options, without the notes.
-pub fn load(model: &str) -> Result<Spec, SpecErrors> {
+/// Loads MODEL as [`load_noted`], without the notes.
+pub fn load(model: &str, urdf: &ImportArgs) -> Result<Spec, SpecErrors> {
+    load_noted(model, urdf).map(|(s, _)| s)
+}
+
+/// Loads a MODEL that is not a URDF: a spec file, a model folder or a shipped model's name.
+fn load_spec(model: &str) -> Result<Spec, SpecErrors> {
     let path = Path::new(model);
-    if is_urdf(path) {
-        return load_noted(model, &ImportOptions::default()).map(|(s, _)| s);
-    }
     // a model folder stands for its spec.toml (or spec.json)
     if path.is_dir() {
         for file in ["spec.toml", "spec.json"] {

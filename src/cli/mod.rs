@@ -3,6 +3,7 @@
 mod animate;
 mod commands;
 mod error;
+mod import_args;
 mod input;
 mod load;
 mod output;
@@ -16,6 +17,7 @@ use std::process::ExitCode;
 
 use clap::{Parser, Subcommand};
 use error::CliError;
+use import_args::ImportArgs;
 
 /// triad: rigid multibody models to FMI 2.0 Co-Simulation FMUs.
 #[derive(Debug, Parser)]
@@ -34,12 +36,18 @@ pub enum Command {
         /// Model spec (.toml or .json), a robot description (.urdf), or the name of a shipped
         /// model (e.g. double_pendulum).
         model: String,
+        /// How a .urdf MODEL is imported.
+        #[command(flatten)]
+        urdf: ImportArgs,
     },
     /// Print the variable table (name, valueReference, causality, variability, unit).
     Describe {
         /// Model spec (.toml or .json), a robot description (.urdf), or the name of a shipped
         /// model.
         model: String,
+        /// How a .urdf MODEL is imported.
+        #[command(flatten)]
+        urdf: ImportArgs,
     },
     /// Run MODEL natively and write every output variable every --step seconds as CSV.
     #[command(allow_negative_numbers = true)]
@@ -73,67 +81,47 @@ pub enum Command {
         /// that names the command building it.
         #[arg(long, value_name = "all|host|LIST")]
         platforms: Option<String>,
+        /// How a .urdf MODEL is imported.
+        #[command(flatten)]
+        urdf: ImportArgs,
     },
     /// Write the model spec equivalent to a URDF (editable TOML; building from either gives
     /// the same FMU). The root link is as the URDF says (a `world` link with a fixed joint:
     /// welded; a floating joint: free); a bare root is welded to the world (as Pinocchio and
     /// MuJoCo do). Links on fixed joints are merged into their parents and become sites.
     /// Revolute and prismatic `<limit lower upper>` become joint stops and `effort` clamps the
-    /// actuator input (placeholders lower = upper or effort = 0 are ignored).
+    /// actuator input (placeholders lower = upper or effort = 0 are ignored). A `<visual>` or
+    /// `<collision>` that cannot be read is dropped with a warning naming its line.
     Import {
         /// Robot description (.urdf).
         robot: PathBuf,
         /// Output file (default: standard output).
         #[arg(short, long, value_name = "OUT.toml")]
         output: Option<PathBuf>,
-        /// Weld the base to the world even if the URDF declares it floating.
-        #[arg(long, conflicts_with = "floating_base")]
-        fixed_base: bool,
-        /// Free the base (a floating base: legged robots, humanoids, free-flying arms).
-        #[arg(long)]
-        floating_base: bool,
-        /// Keep links on fixed joints as bodies on `fixed` joints instead of merging them.
-        #[arg(long)]
-        keep_fixed: bool,
-        /// Leave out the URDF's <limit> (by default `lower`/`upper` become joint stops and
-        /// `effort` clamps the actuator input).
-        #[arg(long)]
-        no_limits: bool,
+        /// How the URDF is imported.
+        #[command(flatten)]
+        urdf: ImportArgs,
     },
 }
 
 /// Runs one command; prints errors to stderr.
 pub fn run(cli: Cli) -> ExitCode {
     let result = match cli.command {
-        Command::Check { model } => commands::check(&model),
-        Command::Describe { model } => commands::describe(&model),
+        Command::Check { model, urdf } => commands::check(&model, &urdf),
+        Command::Describe { model, urdf } => commands::describe(&model, &urdf),
         Command::Simulate(args) => simulate::run(&args),
         Command::Animate(args) => animate::run(&args),
         Command::Build {
             model,
             output,
             platforms,
-        } => commands::build(&model, output.as_deref(), platforms.as_deref()),
+            urdf,
+        } => commands::build(&model, output.as_deref(), platforms.as_deref(), &urdf),
         Command::Import {
             robot,
             output,
-            fixed_base,
-            floating_base,
-            keep_fixed,
-            no_limits,
-        } => {
-            let base = match (fixed_base, floating_base) {
-                (true, _) => triad::urdf::Base::Fixed,
-                (_, true) => triad::urdf::Base::Floating,
-                _ => triad::urdf::Base::Auto,
-            };
-            let opts = triad::urdf::ImportOptions {
-                base,
-                keep_fixed,
-                no_limits,
-            };
-            commands::import(&robot, output.as_deref(), &opts)
-        }
+            urdf,
+        } => commands::import(&robot, output.as_deref(), &urdf),
     };
     match result {
         Ok(()) => ExitCode::SUCCESS,

@@ -12,6 +12,7 @@ use triad::sim::Simulation;
 use triad::variables::{read_state, Accessor, Causality, VariableTable};
 
 use super::error::CliError;
+use super::import_args::ImportArgs;
 use super::input::InputTable;
 use super::load::load;
 use super::output::{finish, AtomicFile};
@@ -64,6 +65,9 @@ pub struct SimulateArgs {
     /// Also write a 3-D replay of the run to this HTML file (as `triad animate`).
     #[arg(long, value_name = "OUT.html")]
     pub animate: Option<PathBuf>,
+    /// How a .urdf MODEL is imported.
+    #[command(flatten)]
+    pub urdf: ImportArgs,
 }
 
 /// Where the CSV goes: a temporary file renamed on success, or memory printed on success.
@@ -111,7 +115,7 @@ fn positive(name: &str, v: Option<f64>) -> Result<(), String> {
 
 /// Runs the command.
 pub fn run(args: &SimulateArgs) -> Result<(), CliError> {
-    let spec = load(&args.model)?;
+    let spec = load(&args.model, &args.urdf)?;
     let (mut def, mut settings) = spec.lower()?;
     let table = VariableTable::new(&def, &settings).with_labels(&spec.labels());
     overrides::apply(&args.set, &table, &mut def, &mut settings)?;

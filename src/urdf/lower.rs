@@ -1,141 +1,23 @@
 //! From the URDF's links and joints to a model spec: the tree, the base, merged fixed links,
-//! inertials in the link frames, identifiers.
+//! inertials in the link frames (`mass`), identifiers.
 //!
 //! ```text
 //! T_host←C  = T_host←P ∘ origin_j                 (a fixed joint j merges child C into P's host)
-//! c         = p + R · xyz_inertial                 (centre of mass in the host frame)
-//! J_c       = (R · R_rpy) J_urdf (R · R_rpy)ᵀ      (inertia about c, host axes)
-//! merged:     m = Σ mᵢ,  c = Σ mᵢ cᵢ / m,  J = Σ [J_cᵢ + mᵢ (|cᵢ − c|² I − (cᵢ − c)(cᵢ − c)ᵀ)]
 //! ```
 //!
 //! A body that takes a single inertial keeps it as written (no parallel-axis round trip).
 
 use std::collections::HashMap;
 
+use super::mass::{clean, distribute, merge, Iso, Parts, Placement};
 use super::names::Namer;
 use super::options::{Base, ImportOptions};
-use super::robot::{at, Geometry, Inertial, JointType, Pose, Robot, Shape};
-use crate::math::{matrix_to_rpy, rpy_to_matrix, Mat3, Vec3};
+use super::robot::{at, Geometry, JointType, Robot, Shape};
+use crate::math::{rpy_to_matrix, Vec3};
 use crate::spec::{
-    BodySpec, InertiaSpec, JointKind, JointSpec, OrientationSpec, OriginSpec, Problem, SiteSpec,
-    Spec, VisualSpec,
+    did_you_mean, BodySpec, InertiaSpec, JointKind, JointSpec, OrientationSpec, OriginSpec,
+    Problem, SiteSpec, Spec, VisualSpec,
 };
-
-/// A rigid placement: rotation and translation (frame in its host frame).
-#[derive(Clone, Copy, Debug)]
-struct Iso {
-    r: Mat3,
-    p: Vec3,
-}
-
-impl Iso {
-    const IDENTITY: Iso = Iso {
-        r: Mat3::new(1.0, 0.0, 0.0, 0.0, 1.0, 0.0, 0.0, 0.0, 1.0),
-        p: Vec3::new(0.0, 0.0, 0.0),
-    };
-
-    fn of(pose: &Pose) -> Self {
-        Self {
-            r: rpy_to_matrix(&Vec3::from(pose.rpy)),
-            p: Vec3::from(pose.xyz),
-        }
-    }
-
-    fn then(&self, b: &Iso) -> Iso {
-        Iso {
-            r: self.r * b.r,
-            p: self.p + self.r * b.p,
-        }
-    }
-
-    fn is_identity(&self) -> bool {
-        self.p == Vec3::zeros() && self.r == Mat3::identity()
-    }
-
-    /// The spec's `origin` of this placement (the URDF's own numbers where nothing was
-    /// composed).
-    fn origin(&self, written: Option<&Pose>) -> OriginSpec {
-        if let Some(w) = written {
-            return OriginSpec {
-                xyz: w.xyz,
-                rpy: w.rpy,
-            };
-        }
-        let rpy = matrix_to_rpy(&self.r);
-        OriginSpec {
-            xyz: [self.p.x, self.p.y, self.p.z],
-            rpy: [rpy.x, rpy.y, rpy.z],
-        }
-    }
-}
-
-/// Where a link ends up: which body (None: the world) and its frame in that body's frame.
-#[derive(Clone, Copy)]
-struct Host {
-    body: Option<usize>,
-    frame: Iso,
-}
-
-/// The inertial contributions merged into one body: `(mass, com, inertia about com)` in the
-/// body frame.
-type Parts = Vec<(f64, Vec3, Mat3)>;
-
-fn inertia_matrix(i: &[f64; 6]) -> Mat3 {
-    let [xx, yy, zz, xy, xz, yz] = *i;
-    Mat3::new(xx, xy, xz, xy, yy, yz, xz, yz, zz)
-}
-
-/// An inertial placed in a host frame: `(m, c, J_c)`.
-fn placed(inertial: &Inertial, frame: &Iso) -> (f64, Vec3, Mat3) {
-    let io = Iso::of(&inertial.origin);
-    let total = frame.then(&io);
-    let j = inertia_matrix(&inertial.inertia);
-    let jc = if total.r == Mat3::identity() {
-        j
-    } else {
-        total.r * j * total.r.transpose()
-    };
-    (inertial.mass, total.p, jc)
-}
-
-/// `j` with the round-off of the file's numbers removed: entries below `1e-12 · max(|J|, m·1 m²)`
-/// of a tensor that is otherwise zero become zero, and principal moments negative by less than
-/// that become zero (real files write `ixz="2.4e-35"` for a point mass). Anything larger is
-/// left for validation to report.
-fn clean(j: Mat3, m: f64) -> Mat3 {
-    let tiny = 1e-12 * j.amax().max(m);
-    if j.amax() <= tiny {
-        return Mat3::zeros();
-    }
-    let eig = j.symmetric_eigen();
-    if eig.eigenvalues.min() >= 0.0 || eig.eigenvalues.min() < -tiny {
-        return j;
-    }
-    let d = Mat3::from_diagonal(&eig.eigenvalues.map(|x| x.max(0.0)));
-    eig.eigenvectors * d * eig.eigenvectors.transpose()
-}
-
-/// Mass, centre of mass and inertia about it of the merged parts.
-fn merge(parts: &Parts) -> (f64, Vec3, Mat3) {
-    match parts.as_slice() {
-        [] => (0.0, Vec3::zeros(), Mat3::zeros()),
-        [one] => *one,
-        _ => {
-            let m: f64 = parts.iter().map(|p| p.0).sum();
-            let c = if m > 0.0 {
-                parts.iter().map(|p| p.1 * p.0).sum::<Vec3>() / m
-            } else {
-                Vec3::zeros()
-            };
-            let mut j = Mat3::zeros();
-            for (mi, ci, ji) in parts {
-                let d = ci - c;
-                j += ji + (Mat3::identity() * d.norm_squared() - d * d.transpose()) * *mi;
-            }
-            (m, c, (j + j.transpose()) * 0.5)
-        }
-    }
-}
 
 /// What the import produced besides the spec.
 #[derive(Debug, Default)]
@@ -146,6 +28,13 @@ pub struct Outcome {
     pub renamed: Vec<(&'static str, String, String)>,
     /// `(identifier, URDF link names merged into it)` per body, in the spec's body order.
     pub merged: Vec<(String, Vec<String>)>,
+    /// The URDF line of each body's (first) link, in the spec's body order.
+    pub body_lines: Vec<usize>,
+    /// The URDF line of each joint, in the spec's joint order.
+    pub joint_lines: Vec<usize>,
+    /// What was dropped from the robot because it could not be read (geometry only: a
+    /// `<visual>` or `<collision>`), each with its line.
+    pub warnings: Vec<String>,
 }
 
 /// Lowers `robot` to a spec; `problems` collects what makes that impossible.
@@ -221,14 +110,34 @@ pub(crate) fn spec(
         }
         parent_joint[c] = Some(k);
         children[p].push(k);
-        if j.mimic.is_some() {
+    }
+    for j in &robot.joints {
+        let Some((other, line)) = &j.mimic else {
+            continue;
+        };
+        if joint_names.contains_key(other.as_str()) {
             out.notes.push(format!(
-                "joint '{}' mimics '{}': imported as an independent joint (the coupling is not enforced)",
-                j.name,
-                j.mimic.as_deref().unwrap_or_default()
+                "joint '{}' mimics '{other}': imported as an independent joint (the coupling is not enforced)",
+                j.name
+            ));
+        } else {
+            // a joint named like it with the mimicking joint's prefix (`Left_` + `index_q1`)
+            let prefixed = robot.joints.iter().find(|c| {
+                c.name
+                    .strip_suffix(other.as_str())
+                    .is_some_and(|pre| !pre.is_empty() && j.name.starts_with(pre))
+            });
+            let hint = prefixed.map_or_else(
+                || did_you_mean(other, robot.joints.iter().map(|c| c.name.as_str())),
+                |c| format!("; did you mean \"{}\"?", c.name),
+            );
+            problems.push(Problem::new(
+                at(*line, &format!("joint \"{}\"", j.name)),
+                format!("<mimic joint=\"{other}\">: there is no joint \"{other}\"{hint}"),
             ));
         }
     }
+    cycles(robot, &link_at, &parent_joint, problems);
     let roots: Vec<usize> = (0..robot.links.len())
         .filter(|&i| {
             parent_joint[i].is_none() && link_at.get(robot.links[i].name.as_str()) == Some(&i)
@@ -257,10 +166,13 @@ pub(crate) fn spec(
             return (empty, out);
         }
         [] => {
-            problems.push(Problem::new(
-                "",
-                "every link has a parent joint: the joints form a cycle",
-            ));
+            // every link has a parent joint: `cycles` has named the cycles
+            if problems.is_empty() {
+                problems.push(Problem::new(
+                    "",
+                    "every link has a parent joint: the joints form a cycle",
+                ));
+            }
             return (empty, out);
         }
         many => {
@@ -292,7 +204,8 @@ pub(crate) fn spec(
     spec.name = Namer::default().name(&robot.name);
     spec.description = format!("imported from {origin} (URDF robot \"{}\")", robot.name);
     let mut parts: Vec<Parts> = Vec::new();
-    let mut host: Vec<Option<Host>> = vec![None; robot.links.len()];
+    // where each link ends up: its body (None: the world), its frame there, its rigid cluster
+    let mut host: Vec<Option<Placement>> = vec![None; robot.links.len()];
     let mut new_body = |spec: &mut Spec, parts: &mut Vec<Parts>, link: usize, out: &mut Outcome| {
         let original = &robot.links[link].name;
         let id = bodies.name(original);
@@ -316,13 +229,16 @@ pub(crate) fn spec(
         });
         parts.push(Vec::new());
         out.merged.push((id, vec![original.clone()]));
+        out.body_lines.push(robot.links[link].line);
         spec.body.len() - 1
     };
     let free_root = !world_root && opts.base == Base::Floating;
     if world_root || !free_root {
-        host[root] = Some(Host {
+        host[root] = Some(Placement {
             body: None,
             frame: Iso::IDENTITY,
+            cluster: None,
+            in_cluster: Iso::IDENTITY,
         });
         if !world_root {
             out.notes.push(format!(
@@ -333,9 +249,11 @@ pub(crate) fn spec(
     } else {
         let b = new_body(&mut spec, &mut parts, root, &mut out);
         spec.body[b].position = Some([0.0; 3]);
-        host[root] = Some(Host {
+        host[root] = Some(Placement {
             body: Some(b),
             frame: Iso::IDENTITY,
+            cluster: Some(root),
+            in_cluster: Iso::IDENTITY,
         });
     }
     // breadth-first from the root: parents are placed before their children
@@ -368,6 +286,21 @@ pub(crate) fn spec(
                 JointType::Prismatic => Some(JointKind::Prismatic),
                 JointType::Planar => Some(JointKind::Planar),
             };
+            if kind != Some(JointKind::Revolute)
+                && kind != Some(JointKind::Prismatic)
+                && kind != Some(JointKind::Planar)
+                && (j.damping > 0.0 || j.friction > 0.0)
+            {
+                let what = if kind.is_some() {
+                    "the joint is fixed"
+                } else {
+                    "the joint frees the base"
+                };
+                out.notes.push(format!(
+                    "joint '{}': <dynamics damping=\"{}\" friction=\"{}\"> is ignored ({what}: no joint motion to damp)",
+                    j.name, j.damping, j.friction
+                ));
+            }
             let Some(kind) = kind else {
                 // the base is free: a floating body placed at the joint's origin
                 let b = new_body(&mut spec, &mut parts, cl, &mut out);
@@ -378,17 +311,27 @@ pub(crate) fn spec(
                     Some(OrientationSpec::Matrix(std::array::from_fn(|i| {
                         std::array::from_fn(|c| r[(i, c)])
                     })));
-                host[cl] = Some(Host {
+                host[cl] = Some(Placement {
                     body: Some(b),
                     frame: Iso::IDENTITY,
+                    cluster: Some(cl),
+                    in_cluster: Iso::IDENTITY,
                 });
                 continue;
             };
+            // a fixed joint welds the child into its parent's rigid cluster
+            let (cluster, in_cluster) = if kind == JointKind::Fixed {
+                (ph.cluster, ph.in_cluster.then(&Iso::of(&j.origin)))
+            } else {
+                (Some(cl), Iso::IDENTITY)
+            };
             if kind == JointKind::Fixed && !opts.keep_fixed {
                 // merged into the parent's host
-                host[cl] = Some(Host {
+                host[cl] = Some(Placement {
                     body: ph.body,
                     frame,
+                    cluster,
+                    in_cluster,
                 });
                 match ph.body {
                     Some(b) => {
@@ -416,16 +359,18 @@ pub(crate) fn spec(
                 continue;
             }
             let b = new_body(&mut spec, &mut parts, cl, &mut out);
-            host[cl] = Some(Host {
+            host[cl] = Some(Placement {
                 body: Some(b),
                 frame: Iso::IDENTITY,
+                cluster,
+                in_cluster,
             });
             let id = joints.name(&j.name);
             if id != j.name {
                 out.renamed.push(("joint", id.clone(), j.name.clone()));
             }
             let movable = matches!(kind, JointKind::Revolute | JointKind::Prismatic);
-            if j.friction > 0.0 {
+            if j.friction > 0.0 && kind != JointKind::Fixed {
                 out.notes.push(format!(
                     "joint '{}': <dynamics friction> is not modelled (inactive)",
                     j.name
@@ -441,6 +386,7 @@ pub(crate) fn spec(
             } else {
                 format!("URDF joint \"{}\"", j.name)
             };
+            out.joint_lines.push(j.line);
             spec.joint.push(JointSpec {
                 name: id,
                 kind,
@@ -453,7 +399,12 @@ pub(crate) fn spec(
                 axis: (kind != JointKind::Fixed).then_some(j.axis),
                 axis2: None,
                 actuated: movable,
-                damping: j.damping,
+                // a fixed joint's <dynamics> is ignored (noted above)
+                damping: if kind == JointKind::Fixed {
+                    0.0
+                } else {
+                    j.damping
+                },
                 stiffness: 0.0,
                 lower,
                 upper,
@@ -465,28 +416,38 @@ pub(crate) fn spec(
             });
         }
     }
-    if spec.body.is_empty() && problems.is_empty() {
+    // (kept links welded to the world are bodies, but they do not move either)
+    let moving = host.iter().flatten().any(|p| p.cluster.is_some());
+    if !moving && problems.is_empty() {
+        let r = &robot.links[root];
         problems.push(Problem::new(
-            "",
+            at(r.line, &format!("link \"{}\"", r.name)),
             format!(
-                "nothing moves: every link is welded to the world through root link '{}'; import with --floating-base to free it",
-                robot.links[root].name
+                "nothing moves: every link is welded to the world through root link '{}'; run the command again with --floating-base to free it",
+                r.name
             ),
         ));
     }
-    // the inertials, each in its host body's frame
-    for (l, link) in robot.links.iter().enumerate() {
-        let (Some(h), Some(inertial)) = (host[l], link.inertial.as_ref()) else {
-            continue;
-        };
-        if let Some(b) = h.body {
-            parts[b].push(placed(inertial, &h.frame));
-        }
+    // the inertials, each in the frame of the body that carries it
+    if problems.is_empty() {
+        distribute(
+            robot,
+            &host,
+            opts.keep_fixed,
+            &mut parts,
+            &mut out.notes,
+            problems,
+        );
     }
     // the shapes, each in its host body's frame (or the world's)
     for (l, link) in robot.links.iter().enumerate() {
         let Some(h) = host[l] else { continue };
-        for shape in &link.shapes {
+        let shapes = if link.visuals.is_empty() {
+            &link.collisions
+        } else {
+            &link.visuals
+        };
+        for shape in shapes {
             let written = h.frame.is_identity().then_some(&shape.origin);
             spec.visual.push(visual(
                 shape,
@@ -512,6 +473,66 @@ pub(crate) fn spec(
         ]);
     }
     (spec, out)
+}
+
+/// Reports every cycle of parent joints (links joined in a ring, attached to the root or not),
+/// each once: its joints with their lines, in document order, and its links.
+fn cycles(
+    robot: &Robot,
+    link_at: &HashMap<&str, usize>,
+    parent_joint: &[Option<usize>],
+    problems: &mut Vec<Problem>,
+) {
+    // 0: not visited, 1: on the current walk up, 2: done
+    let mut state = vec![0u8; parent_joint.len()];
+    for start in 0..parent_joint.len() {
+        let mut walk = Vec::new();
+        let mut at_link = start;
+        let mut closed = false;
+        while state[at_link] == 0 {
+            state[at_link] = 1;
+            walk.push(at_link);
+            let Some(k) = parent_joint[at_link] else {
+                break;
+            };
+            at_link = link_at[robot.joints[k].parent.as_str()];
+            closed = state[at_link] == 1;
+        }
+        if closed {
+            let from = walk.iter().position(|&l| l == at_link).unwrap_or(0);
+            let mut ring: Vec<usize> = walk[from..]
+                .iter()
+                .filter_map(|&l| parent_joint[l])
+                .collect();
+            ring.sort_unstable();
+            let joints: Vec<String> = ring
+                .iter()
+                .map(|&k| {
+                    format!(
+                        "\"{}\" (line {})",
+                        robot.joints[k].name, robot.joints[k].line
+                    )
+                })
+                .collect();
+            let links: Vec<String> = walk[from..]
+                .iter()
+                .rev()
+                .map(|&l| format!("\"{}\"", robot.links[l].name))
+                .collect();
+            let first = &robot.joints[ring[0]];
+            problems.push(Problem::new(
+                at(first.line, &format!("joint \"{}\"", first.name)),
+                format!(
+                    "the joints form a cycle: joints {} join links {} in a ring; a URDF is a tree",
+                    joints.join(", "),
+                    links.join(", ")
+                ),
+            ));
+        }
+        for l in walk {
+            state[l] = 2;
+        }
+    }
 }
 
 /// The position limits (revolute and prismatic joints; not continuous ones) and the effort

@@ -10,7 +10,11 @@
 //! - fixed joints merge the child's inertial into its parent's body (mass, centre of mass,
 //!   rotated inertia with the parallel-axis term) and make the child's frame a site
 //!   (`site.S.r`, `R`, `v`, `w`); `--keep-fixed` keeps such links as bodies on `fixed` joints;
-//!   a link welded to the world carries nothing;
+//!   a link welded to the world carries nothing; `<dynamics>` of a fixed joint is ignored with a
+//!   note;
+//! - one inertial rule in both modes (`mass`): a link whose own inertia is impossible is
+//!   accepted with a note when the rigid cluster it is welded into is possible; an impossible
+//!   cluster is refused, naming its impossible links at their `<inertia>` lines;
 //! - `<inertial>` `origin xyz rpy`: the centre of mass and the axes of the inertia tensor in the
 //!   link frame (the tensor is rotated into the link axes); a link without `<inertial>` is
 //!   massless;
@@ -21,16 +25,19 @@
 //!   clamps the actuator input (`--no-limits`: neither); placeholders (`lower = upper`,
 //!   `effort = 0`) are left out with a note;
 //! - `<visual>` shapes (or a link's `<collision>` shapes when it has no visual) become
-//!   `[[visual]]` entries on the host body for the viewer; mesh files are never opened;
+//!   `[[visual]]` entries on the host body for the viewer; mesh files are never opened; one
+//!   that cannot be read is dropped with a warning (`Outcome::warnings`, with its line): only
+//!   what the dynamics needs can refuse a robot;
 //! - not modelled, each reported as a note: `<dynamics friction>` (inactive), `<mimic>` (the
-//!   joints are independent);
+//!   joints are independent; a `<mimic>` of a joint that does not exist is an error);
 //! - names that are not identifiers are made identifiers deterministically (`names`), the
 //!   original name kept in the description of the element's variables.
 //!
 //! Errors name the file, the line and the element (`robot.urdf: line 57: joint "elbow": child
-//! link "forearm" does not exist`), all at once.
+//! link "forearm" does not exist`; a cycle names its joints and their lines), all at once.
 
 mod lower;
+mod mass;
 mod names;
 mod options;
 mod robot;
@@ -60,11 +67,13 @@ pub fn import(
     let root = xml::parse(text)
         .map_err(|(line, msg)| fail(vec![Problem::new(format!("line {line}"), msg)]))?;
     let mut problems = Vec::new();
-    let robot = robot::robot(&root, &mut problems);
+    let mut warnings = Vec::new();
+    let robot = robot::robot(&root, &mut problems, &mut warnings);
     let name = std::path::Path::new(origin)
         .file_name()
         .map_or_else(|| origin.to_string(), |f| f.to_string_lossy().into_owned());
-    let (spec, outcome) = lower::spec(&robot, opts, &name, &mut problems);
+    let (spec, mut outcome) = lower::spec(&robot, opts, &name, &mut problems);
+    outcome.warnings = warnings;
     if problems.is_empty() {
         Ok((spec, outcome))
     } else {

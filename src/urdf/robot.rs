@@ -1,5 +1,7 @@
 //! The URDF document as typed data: links with their inertials, joints with their frames, axes
 //! and dynamics. Every problem is collected (with the element's line), none stops the reading.
+//! Geometry is not needed by the dynamics: a `<visual>` or `<collision>` that cannot be read is
+//! dropped with a warning (its line and what is wrong), never a problem.
 
 use super::xml::Element;
 use crate::spec::Problem;
@@ -19,6 +21,8 @@ pub(crate) struct Inertial {
     pub mass: f64,
     /// `[ixx, iyy, izz, ixy, ixz, iyz]`.
     pub inertia: [f64; 6],
+    /// The line of `<inertia>` (of `<inertial>` when it has none).
+    pub line: usize,
 }
 
 /// The geometry of a `<visual>` or `<collision>` (m).
@@ -48,8 +52,10 @@ pub(crate) struct Link {
     pub line: usize,
     /// None: a link without `<inertial>` (massless).
     pub inertial: Option<Inertial>,
-    /// What the link looks like, for the viewer.
-    pub shapes: Vec<Shape>,
+    /// Its readable `<visual>` elements, for the viewer.
+    pub visuals: Vec<Shape>,
+    /// Its readable `<collision>` elements (drawn when the link has no visual).
+    pub collisions: Vec<Shape>,
 }
 
 /// URDF joint types.
@@ -85,8 +91,8 @@ pub(crate) struct Joint {
     pub damping: f64,
     pub friction: f64,
     pub limit: Option<Limit>,
-    /// The joint this one mimics.
-    pub mimic: Option<String>,
+    /// The joint this one mimics and the line of `<mimic>`.
+    pub mimic: Option<(String, usize)>,
 }
 
 /// The robot: its name, links and joints in document order.
@@ -159,35 +165,122 @@ fn origin(e: &Element, whose: &str, problems: &mut Vec<Problem>) -> Pose {
     })
 }
 
-/// A `<visual>` or `<collision>`; `None` without a geometry triad can draw (a missing mesh file
-/// is not looked for: the URI is kept as written).
-fn shape(e: &Element, whose: &str, problems: &mut Vec<Problem>) -> Option<Shape> {
-    let g = e.first("geometry")?;
+/// A `<visual>` or `<collision>` element `e` of `whose`: its shape, or `Err(what is wrong)`
+/// (with the line of the offending element) when it cannot be read. A missing mesh file is not
+/// looked for (the URI is kept as written). A colour that cannot be read only loses the colour:
+/// `colour` says why.
+fn shape(e: &Element, whose: &str, colour: &mut Vec<Problem>) -> Result<Shape, Vec<Problem>> {
+    let mut problems = Vec::new();
+    let tag = &e.name;
+    let Some(g) = e.first("geometry") else {
+        return Err(vec![Problem::new(
+            at(e.line, whose),
+            format!("<{tag}> has no <geometry>"),
+        )]);
+    };
+    let size = |el: &Element, key: &str, problems: &mut Vec<Problem>| {
+        let v = number(el, key, whose, problems);
+        if v.is_none() {
+            problems.push(Problem::new(
+                at(el.line, whose),
+                format!("<{}> needs {key}=\"…\"", el.name),
+            ));
+        }
+        v.unwrap_or(0.0)
+    };
     let geometry = if let Some(b) = g.first("box") {
-        Geometry::Box(numbers(b, "size", [0.0; 3], whose, problems))
+        if b.attr("size").is_none() {
+            problems.push(Problem::new(
+                at(b.line, whose),
+                "<box> needs size=\"x y z\"",
+            ));
+        }
+        Geometry::Box(numbers(b, "size", [0.0; 3], whose, &mut problems))
     } else if let Some(c) = g.first("cylinder") {
         Geometry::Cylinder([
-            number(c, "radius", whose, problems).unwrap_or(0.0),
-            number(c, "length", whose, problems).unwrap_or(0.0),
+            size(c, "radius", &mut problems),
+            size(c, "length", &mut problems),
         ])
     } else if let Some(s) = g.first("sphere") {
-        Geometry::Sphere(number(s, "radius", whose, problems).unwrap_or(0.0))
-    } else {
-        let m = g.first("mesh")?;
+        Geometry::Sphere(size(s, "radius", &mut problems))
+    } else if let Some(m) = g.first("mesh") {
+        let file = m.attr("filename").unwrap_or_default().trim();
+        if file.is_empty() {
+            problems.push(Problem::new(at(m.line, whose), "<mesh> has no filename"));
+        }
         Geometry::Mesh(
-            m.attr("filename").unwrap_or_default().to_string(),
-            numbers(m, "scale", [1.0; 3], whose, problems),
+            file.to_string(),
+            numbers(m, "scale", [1.0; 3], whose, &mut problems),
         )
+    } else {
+        let found = g
+            .children
+            .first()
+            .map_or_else(|| "nothing".to_string(), |c| format!("<{}>", c.name));
+        problems.push(Problem::new(
+            at(g.line, whose),
+            format!("<geometry> holds {found}, not a box, cylinder, sphere or mesh"),
+        ));
+        Geometry::Sphere(0.0)
     };
+    let negative = match &geometry {
+        Geometry::Box(s) => s.iter().any(|&x| x < 0.0),
+        Geometry::Cylinder(c) => c.iter().any(|&x| x < 0.0),
+        Geometry::Sphere(r) => *r < 0.0,
+        Geometry::Mesh(..) => false,
+    };
+    if negative {
+        problems.push(Problem::new(
+            at(g.line, whose),
+            "<geometry> sizes must be >= 0",
+        ));
+    }
+    let origin = origin(e, whose, &mut problems);
+    if !problems.is_empty() {
+        return Err(problems);
+    }
     let rgba = e
         .first("material")
         .and_then(|m| m.first("color"))
-        .map(|c| numbers(c, "rgba", [0.7, 0.7, 0.7, 1.0], whose, problems));
-    Some(Shape {
-        origin: origin(e, whose, problems),
+        .and_then(|c| {
+            let before = colour.len();
+            let rgba = numbers(c, "rgba", [0.7, 0.7, 0.7, 1.0], whose, colour);
+            (colour.len() == before).then_some(rgba)
+        });
+    Ok(Shape {
+        origin,
         geometry,
         rgba,
     })
+}
+
+/// The readable `<visual>` (`tag`) or `<collision>` elements of link element `e`; each one that
+/// cannot be read becomes a warning.
+fn shapes(e: &Element, tag: &str, whose: &str, warnings: &mut Vec<String>) -> Vec<Shape> {
+    let mut out = Vec::new();
+    for v in e.all(tag) {
+        let mut colour = Vec::new();
+        match shape(v, whose, &mut colour) {
+            Ok(s) => {
+                for p in colour {
+                    warnings.push(format!(
+                        "{}: {} (the <{tag}> of line {} is drawn in the default colour)",
+                        p.path, p.message, v.line
+                    ));
+                }
+                out.push(s);
+            }
+            Err(problems) => {
+                for p in problems {
+                    warnings.push(format!(
+                        "{}: {} (the <{tag}> of line {} is dropped)",
+                        p.path, p.message, v.line
+                    ));
+                }
+            }
+        }
+    }
+    out
 }
 
 fn inertial(e: &Element, whose: &str, problems: &mut Vec<Problem>) -> Inertial {
@@ -211,8 +304,10 @@ fn inertial(e: &Element, whose: &str, problems: &mut Vec<Problem>) -> Inertial {
         ));
     }
     let mut inertia = [0.0; 6];
+    let mut line = e.line;
     match e.first("inertia") {
         Some(i) => {
+            line = i.line;
             for (k, key) in ["ixx", "iyy", "izz", "ixy", "ixz", "iyz"]
                 .iter()
                 .enumerate()
@@ -230,6 +325,7 @@ fn inertial(e: &Element, whose: &str, problems: &mut Vec<Problem>) -> Inertial {
         origin: origin(e, whose, problems),
         mass,
         inertia,
+        line,
     }
 }
 
@@ -308,10 +404,16 @@ fn joint(e: &Element, problems: &mut Vec<Problem>) -> Option<Joint> {
         upper: number(l, "upper", &whose, problems),
         effort: number(l, "effort", &whose, problems),
     });
-    let mimic = e
-        .first("mimic")
-        .and_then(|m| m.attr("joint"))
-        .map(String::from);
+    let mimic = e.first("mimic").and_then(|m| match m.attr("joint") {
+        Some(other) => Some((other.to_string(), m.line)),
+        None => {
+            problems.push(Problem::new(
+                at(m.line, &whose),
+                "<mimic> has no joint=\"…\"",
+            ));
+            None
+        }
+    });
     let origin = origin(e, &whose, problems);
     Some(Joint {
         name,
@@ -328,8 +430,12 @@ fn joint(e: &Element, problems: &mut Vec<Problem>) -> Option<Joint> {
     })
 }
 
-/// Reads the robot from the root element.
-pub(crate) fn robot(root: &Element, problems: &mut Vec<Problem>) -> Robot {
+/// Reads the robot from the root element; `warnings` receives the geometry that was dropped.
+pub(crate) fn robot(
+    root: &Element,
+    problems: &mut Vec<Problem>,
+    warnings: &mut Vec<String>,
+) -> Robot {
     if root.name != "robot" {
         problems.push(Problem::new(
             at(root.line, &format!("<{}>", root.name)),
@@ -348,21 +454,14 @@ pub(crate) fn robot(root: &Element, problems: &mut Vec<Problem>) -> Robot {
         }
         let whose = format!("link \"{name}\"");
         let inertial = e.first("inertial").map(|i| inertial(i, &whose, problems));
-        let mut shapes: Vec<Shape> = e
-            .all("visual")
-            .filter_map(|v| shape(v, &whose, problems))
-            .collect();
-        if shapes.is_empty() {
-            shapes = e
-                .all("collision")
-                .filter_map(|v| shape(v, &whose, problems))
-                .collect();
-        }
+        let visuals = shapes(e, "visual", &whose, warnings);
+        let collisions = shapes(e, "collision", &whose, warnings);
         robot.links.push(Link {
             name,
             line: e.line,
             inertial,
-            shapes,
+            visuals,
+            collisions,
         });
     }
     for e in root.all("joint") {

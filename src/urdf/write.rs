@@ -1,6 +1,7 @@
 //! The imported spec as editable TOML: the spec's own serialisation (numbers in their shortest
 //! round-trip form, `1e-10` rather than `0.0000000001`, so reading it back gives the same spec and
-//! the same FMU), with a header and a comment before every body, joint and site naming the URDF
+//! the same FMU), with a header (the notes, and a `# warning:` line for every `<visual>` or
+//! `<collision>` dropped) and a comment before every body, joint and site naming the URDF
 //! elements it came from.
 
 use super::lower::Outcome;
@@ -20,6 +21,9 @@ pub fn to_toml(spec: &Spec, outcome: &Outcome) -> Result<String, String> {
     out.push_str("# give the same FMU as long as nothing is changed.\n");
     for n in &outcome.notes {
         out.push_str(&format!("# note: {n}\n"));
+    }
+    for w in &outcome.warnings {
+        out.push_str(&format!("# warning: {w}\n"));
     }
     out.push('\n');
     let (mut b, mut j, mut k) = (0, 0, 0);
@@ -103,8 +107,8 @@ fn shortest_numbers(line: &str) -> String {
 }
 
 /// Problems of an imported spec (validated after import) told in the URDF's terms: the path
-/// `body[i]…` becomes `link "<URDF name>" (body[i]…)`, `joint[i]…` becomes
-/// `joint "<URDF name>" (joint[i]…)`.
+/// `body[i]…` becomes `line L: link "<URDF name>" (body[i]…)`, `joint[i]…` becomes
+/// `line L: joint "<URDF name>" (joint[i]…)`.
 #[must_use]
 pub fn in_urdf_terms(
     mut errors: crate::spec::SpecErrors,
@@ -136,8 +140,15 @@ pub fn in_urdf_terms(
             _ => None,
         };
         if let Some(name) = original {
-            let what = if kind == "body" { "link" } else { "joint" };
-            p.path = format!("{what} \"{name}\" ({})", p.path);
+            let (what, lines) = if kind == "body" {
+                ("link", &outcome.body_lines)
+            } else {
+                ("joint", &outcome.joint_lines)
+            };
+            let line = lines
+                .get(i)
+                .map_or_else(String::new, |l| format!("line {l}: "));
+            p.path = format!("{line}{what} \"{name}\" ({})", p.path);
         }
     }
     errors

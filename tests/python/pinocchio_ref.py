@@ -75,6 +75,11 @@ def urdf_names(toml_text):
     return names
 
 
+def total_mass(toml_text):
+    """The sum of the `mass` of every [[body]] of an imported spec, kg."""
+    return sum(float(t["mass"]) for t in _spec_tables(toml_text) if t["kind"] == "body")
+
+
 def free_bodies(toml_text):
     """triad names of the bodies that take a `position` (free bodies and floating bases)."""
     return [t["name"].strip('"') for t in _spec_tables(toml_text) if t["kind"] == "body" and "position" in t]

@@ -37,6 +37,7 @@ import zlib
 from pathlib import Path
 
 import numpy as np
+import pinocchio as pin
 import pytest
 from fmpy import read_model_description, simulate_fmu
 
@@ -289,3 +290,39 @@ def test_allegro_order4_with_its_damping(triad_bin, tmp_path, max_step, record_p
     assert drift <= 1e-12, drift
     # measured: 4.7e-12 rad at 5e-5, 1.3e-6 rad at 1e-3
     assert worst <= (TRAJECTORY_TOL if max_step <= MAX_STEP else 1e-5), worst
+
+
+# Links on fixed joints whose own inertials are impossible (at round-off of nothing but their own
+# tiny scale, or plainly), each welded into a possible rigid body: `--keep-fixed` imports them as
+# the default import does (issue 30), on every command. (URDF, the link named in a note)
+KEEP_FIXED = {
+    "anymal_b": ("anymal_b_simple_description/robots/anymal.urdf", "base"),
+    "hyq": ("hyq_description/robots/hyq_no_sensors.urdf", "lf_foot"),
+    "tiago": ("tiago_description/robots/tiago.urdf", "base_antenna_left_link"),
+    "allegro_right_hand": ("allegro_hand_description/urdf/allegro_right_hand.urdf", "link_3.0"),
+    "pr2": ("pr2_description/urdf/pr2.urdf", "sensor_mount_link"),
+}
+
+
+@pytest.mark.parametrize("name", list(KEEP_FIXED))
+def test_keep_fixed_imports_what_the_default_imports(name, triad_bin, tmp_path):
+    relative, link = KEEP_FIXED[name]
+    urdf = str(ref.robot_urdf(relative))
+    model = ref.load_model(urdf, floating=True)  # Pinocchio loads it
+    for base in ([], ["--floating-base"]):
+        for keep in ([], ["--keep-fixed"]):
+            _run_triad(triad_bin, "check", urdf, *base, *keep)
+    notes = {}
+    masses = {}
+    for keep in ([], ["--keep-fixed"]):
+        out = _run_triad(triad_bin, "check", urdf, "--floating-base", *keep)
+        notes[bool(keep)] = out
+        spec = tmp_path / f"{name}{'_kept' if keep else ''}.toml"
+        _run_triad(triad_bin, "import", urdf, "--floating-base", *keep, "-o", str(spec))
+        masses[bool(keep)] = ref.total_mass(spec.read_text())
+    for keep, out in notes.items():
+        assert f"note: link '{link}': its own inertia" in out, f"keep_fixed={keep}:\n{out}"
+    # the same rigid bodies: all the robot's mass on the free base's tree, in both modes
+    total = pin.computeTotalMass(model)
+    for keep, mass in masses.items():
+        assert abs(mass - total) <= 1e-12 * total, (keep, mass, total)

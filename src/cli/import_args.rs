@@ -1,0 +1,57 @@
+//! The options of URDF import, one clap `Args` group flattened into every command that reads a
+//! MODEL (`check`, `describe`, `simulate`, `build`, `animate`, `import`): a new import option is
+//! added here and in `urdf::ImportOptions`, nowhere else.
+
+use clap::Args;
+use triad::urdf::{Base, ImportOptions};
+
+/// How a `.urdf` MODEL is imported (the same options and meaning as `triad import`).
+#[derive(Clone, Debug, Default, Args)]
+#[command(next_help_heading = "URDF import (a .urdf only)")]
+pub struct ImportArgs {
+    /// Weld the base to the world even if the URDF declares it floating.
+    #[arg(long, conflicts_with = "floating_base")]
+    pub fixed_base: bool,
+    /// Free the base (a floating base: legged robots, humanoids, free-flying arms, a loose
+    /// object); by default a root link without a floating joint is welded to the world.
+    #[arg(long)]
+    pub floating_base: bool,
+    /// Keep links on fixed joints as bodies on `fixed` joints instead of merging them into their
+    /// parents (as sites).
+    #[arg(long)]
+    pub keep_fixed: bool,
+    /// Leave out the URDF's <limit> (by default `lower`/`upper` become joint stops and
+    /// `effort` clamps the actuator input).
+    #[arg(long)]
+    pub no_limits: bool,
+}
+
+impl ImportArgs {
+    /// The import options these arguments ask for.
+    pub fn options(&self) -> ImportOptions {
+        let base = match (self.fixed_base, self.floating_base) {
+            (true, _) => Base::Fixed,
+            (_, true) => Base::Floating,
+            _ => Base::Auto,
+        };
+        ImportOptions {
+            base,
+            keep_fixed: self.keep_fixed,
+            no_limits: self.no_limits,
+        }
+    }
+
+    /// The options given, as typed (`--floating-base`, ...): for the message that a model other
+    /// than a URDF takes none.
+    pub fn given(&self) -> Vec<&'static str> {
+        [
+            (self.fixed_base, "--fixed-base"),
+            (self.floating_base, "--floating-base"),
+            (self.keep_fixed, "--keep-fixed"),
+            (self.no_limits, "--no-limits"),
+        ]
+        .into_iter()
+        .filter_map(|(on, name)| on.then_some(name))
+        .collect()
+    }
+}
