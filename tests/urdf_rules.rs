@@ -32,6 +32,7 @@ const KEEP: ImportOptions = ImportOptions {
     base: triad::urdf::Base::Auto,
     keep_fixed: true,
     no_limits: false,
+    contacts: false,
 };
 
 /// Runs triad in `dir`: (success, stdout, stderr), after checking nothing panicked.

@@ -24,6 +24,10 @@ pub struct ImportArgs {
     /// `effort` clamps the actuator input).
     #[arg(long)]
     pub no_limits: bool,
+    /// Make each link's <collision> spheres, boxes and cylinders collision shapes that touch
+    /// the ground (meshes are left out with a note), and add a ground plane at height 0.
+    #[arg(long)]
+    pub contacts: bool,
 }
 
 impl ImportArgs {
@@ -38,6 +42,7 @@ impl ImportArgs {
             base,
             keep_fixed: self.keep_fixed,
             no_limits: self.no_limits,
+            contacts: self.contacts,
         }
     }
 
@@ -49,6 +54,7 @@ impl ImportArgs {
             (self.floating_base, "--floating-base"),
             (self.keep_fixed, "--keep-fixed"),
             (self.no_limits, "--no-limits"),
+            (self.contacts, "--contacts"),
         ]
         .into_iter()
         .filter_map(|(on, name)| on.then_some(name))

@@ -35,6 +35,9 @@ pub struct Outcome {
     /// What was dropped from the robot because it could not be read (geometry only: a
     /// `<visual>` or `<collision>`), each with its line.
     pub warnings: Vec<String>,
+    /// Where each `[[collision]]` came from (`--contacts`), in the spec's order: the URDF
+    /// element, its line and the body it was merged into.
+    pub collisions: Vec<String>,
 }
 
 /// Lowers `robot` to a spec; `problems` collects what makes that impossible.
@@ -456,6 +459,9 @@ pub(crate) fn spec(
                 h.frame.then(&Iso::of(&shape.origin)).origin(written),
             ));
         }
+    }
+    if opts.contacts && problems.is_empty() {
+        super::contacts::add(robot, &host, &mut spec, &mut out);
     }
     for (b, p) in parts.iter().enumerate() {
         let (m, c, j) = merge(p);

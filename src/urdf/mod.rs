@@ -28,6 +28,9 @@
 //!   `[[visual]]` entries on the host body for the viewer; mesh files are never opened; one
 //!   that cannot be read is dropped with a warning (`Outcome::warnings`, with its line): only
 //!   what the dynamics needs can refuse a robot;
+//! - `--contacts` (`contacts`): `<collision>` spheres, boxes and cylinders become
+//!   `[[collision]]` shapes named after their links, on their host bodies, and a `[ground]` is
+//!   added; meshes and shapes of links welded to the world are left out with a note;
 //! - not modelled, each reported as a note: `<dynamics friction>` (inactive), `<mimic>` (the
 //!   joints are independent; a `<mimic>` of a joint that does not exist is an error);
 //! - names that are not identifiers are made identifiers deterministically (`names`), the
@@ -36,6 +39,7 @@
 //! Errors name the file, the line and the element (`robot.urdf: line 57: joint "elbow": child
 //! link "forearm" does not exist`; a cycle names its joints and their lines), all at once.
 
+mod contacts;
 mod lower;
 mod mass;
 mod names;

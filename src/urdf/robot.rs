@@ -40,6 +40,8 @@ pub(crate) enum Geometry {
 /// geometry and the colour of its `<material>` when given inline.
 #[derive(Clone, Debug, PartialEq)]
 pub(crate) struct Shape {
+    /// The line of the `<visual>` or `<collision>` element.
+    pub line: usize,
     pub origin: Pose,
     pub geometry: Geometry,
     pub rgba: Option<[f64; 4]>,
@@ -248,6 +250,7 @@ fn shape(e: &Element, whose: &str, colour: &mut Vec<Problem>) -> Result<Shape, V
             (colour.len() == before).then_some(rgba)
         });
     Ok(Shape {
+        line: e.line,
         origin,
         geometry,
         rgba,

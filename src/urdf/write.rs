@@ -1,8 +1,8 @@
 //! The imported spec as editable TOML: the spec's own serialisation (numbers in their shortest
 //! round-trip form, `1e-10` rather than `0.0000000001`, so reading it back gives the same spec and
 //! the same FMU), with a header (the notes, and a `# warning:` line for every `<visual>` or
-//! `<collision>` dropped) and a comment before every body, joint and site naming the URDF
-//! elements it came from.
+//! `<collision>` dropped) and a comment before every body, joint, site and collision shape
+//! naming the URDF elements it came from (and one before the ground saying what it holds).
 
 use super::lower::Outcome;
 use crate::spec::Spec;
@@ -26,9 +26,26 @@ pub fn to_toml(spec: &Spec, outcome: &Outcome) -> Result<String, String> {
         out.push_str(&format!("# warning: {w}\n"));
     }
     out.push('\n');
-    let (mut b, mut j, mut k) = (0, 0, 0);
+    let (mut b, mut j, mut k, mut c) = (0, 0, 0, 0);
     for line in body.lines() {
         match line.trim() {
+            "[ground]" => out.push_str(
+                "\n# The ground (--contacts): a plane at `height` along the normal against gravity;\n\
+                 # Coulomb `friction`, normal `stiffness` (N/m) and Hunt-Crossley `damping` (s/m,\n\
+                 # normal force k x (1 + damping x')); also the FMU parameters ground.*\n",
+            ),
+            "[[collision]]" => {
+                if let Some(source) = outcome.collisions.get(c) {
+                    if c == 0 {
+                        out.push_str(
+                            "\n# Collision shapes (--contacts), in their bodies' frames: every shape touches the\n\
+                             # ground; outputs contact.NAME.f[1..3] (N, world frame) and contact.NAME.gap (m)\n",
+                        );
+                    }
+                    out.push_str(&format!("\n# {source}\n"));
+                }
+                c += 1;
+            }
             // the importer declares no loads; an empty list says nothing
             "load = []" => continue,
             "[[site]]" => {
