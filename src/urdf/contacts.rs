@@ -39,9 +39,9 @@ fn listed(items: &[(String, usize)]) -> String {
     s.join(", ")
 }
 
-/// `1 <collision> cylinder` / `3 <collision> cylinders`.
-fn count(n: usize, what: &str) -> String {
-    format!("{n} <collision> {what}{}", if n == 1 { "" } else { "s" })
+/// `1 <collision> mesh` / `3 <collision> meshes`.
+fn count(n: usize, one: &str, many: &str) -> String {
+    format!("{n} <collision> {}", if n == 1 { one } else { many })
 }
 
 /// Adds the collision shapes of every link placed on a moving body (`host`, from the tree) to
@@ -117,28 +117,28 @@ pub(super) fn add(robot: &Robot, host: &[Option<Placement>], spec: &mut Spec, ou
     if !cylinders.is_empty() {
         out.notes.push(format!(
             "{} ({}): cylinder shapes touch the ground (each rim as 12 points), not other shapes",
-            count(cylinders.len(), "cylinder"),
+            count(cylinders.len(), "cylinder", "cylinders"),
             listed(&cylinders)
         ));
     }
     if !meshes.is_empty() {
         out.notes.push(format!(
             "{} left out ({}): triad has no mesh contact; give such a link a [[collision]] sphere, capsule or box in the spec",
-            count(meshes.len(), "mesh"),
+            count(meshes.len(), "mesh", "meshes"),
             listed(&meshes)
         ));
     }
     if !welded.is_empty() {
         out.notes.push(format!(
             "{} of links welded to the world left out ({}): the ground is the world's only contact surface",
-            count(welded.len(), "element"),
+            count(welded.len(), "element", "elements"),
             listed(&welded)
         ));
     }
     if !empty.is_empty() {
         out.notes.push(format!(
             "{} of zero size left out ({})",
-            count(empty.len(), "element"),
+            count(empty.len(), "element", "elements"),
             listed(&empty)
         ));
     }
