@@ -200,9 +200,10 @@ def plot(res, spec, png):
     ax[0].set_title("Go1 (example-robot-data) dropped 0.1 m, standing under a joint PD loop in fmpy")
     for k, f in enumerate(FEET):
         ax[1].plot(t, res["feet"][:, k], lw=1, label=f"contact.{f}.f[3]")
-    ax[1].plot(t, res["feet"].sum(axis=1), "k", lw=1.2, label="sum")
-    ax[1].axhline(weight(spec), color="r", ls="--", lw=1, label=f"weight {weight(spec):.1f} N")
-    ax[1].set_ylim(0, 1.05 * res["feet"].sum(axis=1).max())
+    total = res["feet"][-1].sum()
+    ax[1].axhline(weight(spec) / 4, color="k", ls="--", lw=1, label="weight / 4")
+    ax[1].set_ylim(0, 1.05 * res["feet"].max())
+    ax[1].set_title(f"at {t[-1]:g} s the four sum to {total:.3f} N, the weight {weight(spec):.3f} N", fontsize=9)
     ax[1].set_ylabel("vertical foot force (N)")
     ax[1].legend(ncol=3, fontsize=8, loc="upper right")
     ew = res["energy"] - res["work"]
