@@ -4,7 +4,8 @@
 //! communication points, corrupted and foreign saved states, bogus state pointers, instances
 //! freed with states outstanding. Two instances of the model live side by side and the calls
 //! go to either, so FMU states move between instances (got in one, set, serialised or freed
-//! through the other) as hosts with pools of instances do. 25 000 calls on each shipped model.
+//! through the other) as hosts with pools of instances do. 25 000 calls on each shipped model
+//! and on the bouncing ball (contact).
 //!
 //! Asserted after every call: no panic and no `fmi2Fatal` (nothing reaches the poisoning
 //! path), a status among the five of FMI 2.0 (never `fmi2Pending`), an `fmi2Error` changes
@@ -425,7 +426,13 @@ fn random_call_sequences_keep_every_promise() {
         let f = Fmu::initialised(&TestModel::new(dp));
         f.serialize()
     };
-    for (k, (name, text)) in triad::spec::bundled().iter().enumerate() {
+    // every shipped model, and a model with contact (ground, friction bristles in the state)
+    let contact: [(&str, &str); 1] = [(
+        "bouncing_ball",
+        include_str!("../examples/specs/bouncing_ball.toml"),
+    )];
+    let models = triad::spec::bundled().iter().chain(contact.iter());
+    for (k, (name, text)) in models.enumerate() {
         let m = model(text);
         let of = |c: Causality, ty: VarType| -> Vec<u32> {
             m.table

@@ -19,12 +19,7 @@ mod joints;
 /// tolerance, so that the spec check and `Model::new` agree.
 const LOOP_TOLERANCE: f64 = crate::mechanics::loops::LOOP_TOLERANCE;
 
-/// `[A-Za-z_][A-Za-z0-9_]*`.
-pub(crate) fn is_identifier(s: &str) -> bool {
-    let mut chars = s.chars();
-    matches!(chars.next(), Some(c) if c.is_ascii_alphabetic() || c == '_')
-        && chars.all(|c| c.is_ascii_alphanumeric() || c == '_')
-}
+pub(crate) use common::is_identifier;
 
 fn check_name(report: &mut Report, path: &str, name: &str) {
     if !is_identifier(name) {

@@ -138,6 +138,8 @@ pub(crate) struct Friction {
     pub dir: Vec3,
     /// `∂F/∂C`, the force's change with the cone.
     pub dcap: Vec3,
+    /// `∂F/∂c_t`, the force's change with the damper (which follows the penetration).
+    pub dct: Vec3,
 }
 
 /// The friction force over a step of size `h` (module formulas): bristle stiffness `kt`,
@@ -154,6 +156,7 @@ pub(crate) fn friction(kt: f64, ct: f64, cap: f64, s0: Vec3, u: Vec3, h: f64) ->
             radial: 0.0,
             dir: Vec3::zeros(),
             dcap: Vec3::zeros(),
+            dct: Vec3::zeros(),
         };
     }
     let star = s0 + u * 0.5;
@@ -172,6 +175,9 @@ pub(crate) fn friction(kt: f64, ct: f64, cap: f64, s0: Vec3, u: Vec3, h: f64) ->
     } else {
         Vec3::zeros()
     };
+    // ∂trial/∂c_t = −u/h, ∂r/∂c_t = t̂·(−u/h)/C
+    let dtrial = -u / h;
+    let dct = dtrial * lam + trial * (dlam * dir.dot(&dtrial) / cap);
     Friction {
         force: trial * lam,
         s1: star * (2.0 * lam) - s0,
@@ -180,6 +186,7 @@ pub(crate) fn friction(kt: f64, ct: f64, cap: f64, s0: Vec3, u: Vec3, h: f64) ->
         radial: a * r * dlam,
         dir,
         dcap: trial * (-dlam * r / cap),
+        dct,
     }
 }
 

@@ -152,9 +152,12 @@ pub(crate) fn contact_forces(model: &Model, ws: &mut Work, h: f64, jac: bool) {
                 outer(blk, hh * st.normal.dforce, &wbar, &w);
                 let t = tangent_matrix(&g.normal, &st.friction);
                 tangential(blk, hh, &rcbar, &rc, &t);
-                if st.friction.dcap != Vec3::zeros() {
-                    // the cone μ f follows the normal force: ∂F/∂x₁ = μ f' ∂F/∂C
-                    let s = st.friction.dcap * (p.law.friction * st.normal.dforce);
+                // the cone μ f follows the normal force, the damper k d p̄ the penetration:
+                // ∂F/∂x₁ = μ f' ∂F/∂C + k d ∂p̄/∂x₁ ∂F/∂c_t
+                let dmean = if st.x1 > 0.0 { 0.5 } else { 0.0 };
+                let s = st.friction.dcap * (p.law.friction * st.normal.dforce)
+                    + st.friction.dct * (p.law.stiffness * p.law.damping * dmean);
+                if s != Vec3::zeros() {
                     let left: [f64; 6] = {
                         let m = rcbar.cross(&s);
                         [s.x, s.y, s.z, m.x, m.y, m.z]
@@ -178,7 +181,11 @@ pub(crate) fn contact_forces(model: &Model, ws: &mut Work, h: f64, jac: bool) {
         push_force(&mut ws.rn, b, &st.xb, &st.friction.force, hh);
         push_force(&mut ws.rn, a, &st.xa, &(-st.friction.force), hh);
         if jac {
-            for (body, grad, x) in [(a, ga, &st.xa), (b, gb, &st.xb)] {
+            let law = f.law;
+            let dmean = if st.x1 > 0.0 { 0.5 } else { 0.0 };
+            let coupling = st.friction.dcap * (law.friction * st.normal.dforce)
+                + st.friction.dct * (law.stiffness * law.damping * dmean);
+            for (body, grad, x, sign) in [(a, ga, &st.xa, -1.0), (b, gb, &st.xb, 1.0)] {
                 let qbar = body_nodes(&ws.qbar, body);
                 let dbar = [qbar[1], qbar[2], qbar[3]];
                 let w = project(grad, &dbar);
@@ -186,6 +193,13 @@ pub(crate) fn contact_forces(model: &Model, ws: &mut Work, h: f64, jac: bool) {
                 let r = world(&qbar, x);
                 let t = tangent_matrix(&st.n, &st.friction);
                 tangential(&mut ws.xbody[body], hh, &r, &r, &t);
+                // the friction on this body (sign) follows its own share of the penetration
+                let s = coupling * sign;
+                let left = {
+                    let m = r.cross(&s);
+                    [s.x, s.y, s.z, m.x, m.y, m.z]
+                };
+                outer(&mut ws.xbody[body], hh, &left, &w);
             }
         }
     }

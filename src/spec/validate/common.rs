@@ -3,6 +3,13 @@
 use crate::math::Vec3;
 use crate::spec::error::Report;
 
+/// `[A-Za-z_][A-Za-z0-9_]*`.
+pub(crate) fn is_identifier(s: &str) -> bool {
+    let mut chars = s.chars();
+    matches!(chars.next(), Some(c) if c.is_ascii_alphabetic() || c == '_')
+        && chars.all(|c| c.is_ascii_alphanumeric() || c == '_')
+}
+
 /// Reports `path` unless every value is finite.
 pub(super) fn check_finite(report: &mut Report, path: &str, values: &[f64]) {
     if values.iter().any(|x| !x.is_finite()) {

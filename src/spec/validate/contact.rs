@@ -6,7 +6,7 @@ use crate::mechanics::ranges;
 use crate::spec::error::{did_you_mean, Report};
 use crate::spec::schema::{CollisionSpec, Spec};
 
-use super::common::check_finite;
+use super::common::{check_finite, is_identifier};
 
 /// Reports a law value outside its range.
 fn law(
@@ -60,7 +60,7 @@ pub(super) fn check(spec: &Spec, report: &mut Report, body_index: &HashMap<&str,
     for (i, c) in spec.collision.iter().enumerate() {
         let p = format!("collision[{i}]");
         let name = names[i].as_str();
-        if !super::is_identifier(name) {
+        if !is_identifier(name) {
             report.push(
                 format!("{p}.name"),
                 format!("\"{name}\" is not an identifier: use letters, digits and _ and do not start with a digit"),
