@@ -143,9 +143,9 @@ def run_fmu(fmu_path, spec, stop=STOP, h=H, every=10, start_values=None):
                     instanceName="quadruped")
     fmu.instantiate()
     fmu.setupExperiment(startTime=0.0)
-    fmu.enterInitializationMode()
     for name, value in (start_values or {}).items():
         fmu.setReal([vr[name]], [value])
+    fmu.enterInitializationMode()
     fmu.exitInitializationMode()
     n = int(round(stop / h))
     rows = np.empty((n + 1, 1 + len(record)))
