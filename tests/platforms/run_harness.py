@@ -25,8 +25,12 @@ import sys
 import time
 import zipfile
 
-# models whose motion after 1 s amplifies a last-place difference beyond 1e-12 (none known)
-CHAOTIC = set()
+# models whose motion after 1 s amplifies a last-place difference beyond 1e-12, reported only:
+# quadruped_stand (examples/quadruped_stand.py), the unactuated Go1 folding onto the ground under
+# the harness's small inputs (legs into their stops, feet and trunk sliding): a change of gravity
+# by one ulp moves joint.FR_thigh_joint.qd by 1.1e-6 after 1 s on one machine (triad simulate),
+# and aarch64 differs from linux64 by 6.5e-7 on the same output (qemu, measured)
+CHAOTIC = {"quadruped_stand"}
 REL_TOL = 1e-12
 # slider_crank (a closed loop): its coordinates and rates agree to 1e-14 between libms, but
 # system.p and system.L, read from the integrator's nodal velocities, differ by up to 9e-12
