@@ -16,7 +16,6 @@
 //! - a `[ground]` (the defaults: height 0, friction 0.8, stiffness 1e5 N/m, damping 1 s/m) is
 //!   added when the spec has none.
 
-use super::lower::Outcome;
 use super::mass::{Iso, Placement};
 use super::names::Namer;
 use super::robot::{Geometry, Robot};
@@ -44,9 +43,23 @@ fn count(n: usize, one: &str, many: &str) -> String {
     format!("{n} <collision> {}", if n == 1 { one } else { many })
 }
 
+/// What [`add`] tells besides the spec: notes, and where each shape came from (in the spec's
+/// order).
+#[derive(Debug, Default)]
+pub(super) struct Added {
+    pub notes: Vec<String>,
+    pub sources: Vec<String>,
+}
+
 /// Adds the collision shapes of every link placed on a moving body (`host`, from the tree) to
-/// `spec`, a ground when it has none, and the notes and per-shape sources to `out`.
-pub(super) fn add(robot: &Robot, host: &[Option<Placement>], spec: &mut Spec, out: &mut Outcome) {
+/// `spec`, and a ground when it has none. `merged` lists each body's links, its own first.
+pub(super) fn add(
+    robot: &Robot,
+    host: &[Option<Placement>],
+    merged: &[(String, Vec<String>)],
+    spec: &mut Spec,
+) -> Added {
+    let mut out = Added::default();
     let mut names = Namer::default();
     let (mut cylinders, mut meshes, mut welded, mut empty) =
         (Vec::new(), Vec::new(), Vec::new(), Vec::new());
@@ -102,12 +115,12 @@ pub(super) fn add(robot: &Robot, host: &[Option<Placement>], spec: &mut Spec, ou
                 cylinders.push(here);
             }
             c.name = Some(names.name(&link.name));
-            let merged = if out.merged[b].1.first() == Some(&link.name) {
+            let merged = if merged[b].1.first() == Some(&link.name) {
                 String::new()
             } else {
                 format!(", merged into body {}", spec.body[b].name)
             };
-            out.collisions.push(format!(
+            out.sources.push(format!(
                 "URDF <collision> of link \"{}\" (line {}{merged})",
                 link.name, shape.line
             ));
@@ -156,4 +169,5 @@ pub(super) fn add(robot: &Robot, host: &[Option<Placement>], spec: &mut Spec, ou
             damping: law.damping,
         });
     }
+    out
 }

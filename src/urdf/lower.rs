@@ -461,7 +461,9 @@ pub(crate) fn spec(
         }
     }
     if opts.contacts && problems.is_empty() {
-        super::contacts::add(robot, &host, &mut spec, &mut out);
+        let added = super::contacts::add(robot, &host, &out.merged, &mut spec);
+        out.notes.extend(added.notes);
+        out.collisions = added.sources;
     }
     for (b, p) in parts.iter().enumerate() {
         let (m, c, j) = merge(p);
