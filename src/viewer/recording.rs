@@ -1,6 +1,7 @@
 //! A recorded motion: the time of every kept row and, for every body of the model, the pose of
-//! its frame (position and rotation world ← body), plus the signals the page plots. Built from a
-//! result CSV ([`Recording::from_table`]) or directly (the FMU's initial pose).
+//! its frame (position and rotation world ← body), the contact force through every collision
+//! shape whose outputs were recorded, and the signals the page plots. Built from a result CSV
+//! ([`Recording::from_table`]) or directly (the FMU's initial pose).
 
 use std::collections::BTreeSet;
 
@@ -18,6 +19,18 @@ pub struct BodyTrack {
     pub r: Vec<Vec3>,
     /// Rotation world ← body (columns are the body axes in world coordinates); one per time.
     pub rot: Vec<Mat3>,
+}
+
+/// The contact force through one collision shape over the recording (`contact.C.f[1..3]`).
+#[derive(Clone, Debug, PartialEq)]
+pub struct ContactTrack {
+    /// The shape's name (as `Spec::collision_names` gives it).
+    pub name: String,
+    /// Index of the shape among the spec's `[[collision]]` entries.
+    pub shape: usize,
+    /// Total contact force on the shape's body through the shape, world frame, N; one per
+    /// recorded time (non-finite values are kept: the page draws no arrow for them).
+    pub f: Vec<Vec3>,
 }
 
 /// What a plotted signal measures.
@@ -52,6 +65,9 @@ pub struct Recording {
     pub time: Vec<f64>,
     /// One track per body of the model, in the spec's order.
     pub bodies: Vec<BodyTrack>,
+    /// One track per collision shape whose three force columns are in the result, in the
+    /// spec's order (none for a result without them: the page then has no force arrows).
+    pub contacts: Vec<ContactTrack>,
     /// Plotted signals (joint coordinates, energy balance), in CSV order.
     pub signals: Vec<Signal>,
 }
@@ -74,6 +90,14 @@ fn coordinate(column: &str) -> Option<(&str, usize)> {
     Some((joint, k))
 }
 
+/// The shape and component (1-based) of a contact force column `contact.C.f[i]`.
+fn contact_force(column: &str) -> Option<(&str, usize)> {
+    let rest = column.strip_prefix("contact.")?;
+    let (shape, var) = rest.rsplit_once('.')?;
+    let i = var.strip_prefix("f[")?.strip_suffix(']')?.parse().ok()?;
+    (1..=3).contains(&i).then_some((shape, i))
+}
+
 /// Unit of coordinate `k` (1-based, 0 for the only one) of a joint of type `kind`.
 fn coordinate_unit(kind: JointKind, k: usize) -> &'static str {
     match (kind, k) {
@@ -83,10 +107,12 @@ fn coordinate_unit(kind: JointKind, k: usize) -> &'static str {
 }
 
 impl Recording {
-    /// True for the columns a recording reads: poses, joint coordinates, energy and work.
+    /// True for the columns a recording reads: poses, contact forces, joint coordinates,
+    /// energy and work.
     #[must_use]
     pub fn reads(column: &str) -> bool {
         pose_body(column).is_some()
+            || contact_force(column).is_some()
             || coordinate(column).is_some()
             || column == "system.energy"
             || column == "system.work"
@@ -190,6 +216,7 @@ impl Recording {
         }
         let rec = Self {
             signals: signals(table, spec),
+            contacts: contacts(table, spec),
             time,
             bodies,
         };
@@ -281,6 +308,14 @@ impl Recording {
                     rot: keep.iter().map(|&k| b.rot[k]).collect(),
                 })
                 .collect(),
+            contacts: self
+                .contacts
+                .iter()
+                .map(|c| ContactTrack {
+                    f: keep.iter().map(|&k| c.f[k]).collect(),
+                    ..c.clone()
+                })
+                .collect(),
             signals: self
                 .signals
                 .iter()
@@ -291,6 +326,23 @@ impl Recording {
                 .collect(),
         }
     }
+}
+
+/// The contact forces of `spec`'s collision shapes whose three columns `table` has.
+fn contacts(table: &ResultTable, spec: &Spec) -> Vec<ContactTrack> {
+    spec.collision_names()
+        .into_iter()
+        .enumerate()
+        .filter_map(|(shape, name)| {
+            let cols: Vec<&[f64]> = (1..=3)
+                .map(|i| table.column(&format!("contact.{name}.f[{i}]")))
+                .collect::<Option<_>>()?;
+            let f = (0..cols[0].len())
+                .map(|k| Vec3::new(cols[0][k], cols[1][k], cols[2][k]))
+                .collect();
+            Some(ContactTrack { name, shape, f })
+        })
+        .collect()
 }
 
 /// The joint coordinates of `spec`'s joints found in `table`, then the energy balance.
@@ -339,6 +391,10 @@ mod tests {
         assert_eq!(coordinate("joint.elbow.q"), Some(("elbow", 0)));
         assert_eq!(coordinate("joint.hip.q[2]"), Some(("hip", 2)));
         assert_eq!(coordinate("joint.hip.qd[2]"), None);
+        assert_eq!(contact_force("contact.FL_foot.f[3]"), Some(("FL_foot", 3)));
+        assert_eq!(contact_force("contact.FL_foot.f[4]"), None);
+        assert_eq!(contact_force("contact.FL_foot.gap"), None);
+        assert!(Recording::reads("contact.shell.f[1]"));
     }
 
     #[test]
