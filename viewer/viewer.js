@@ -198,6 +198,18 @@
     box.expandByObject(robot);
   }
   if (box.isEmpty()) box.set(new T.Vector3(-L / 2, -L / 2, -L / 2), new T.Vector3(L / 2, L / 2, L / 2));
+  // with a ground not far off, the view takes in the ground under the model (a dropped body)
+  const groundNormal = data.ground ? new T.Vector3().fromArray(data.ground.normal).normalize() : null;
+  if (groundNormal) {
+    const corners = [];
+    for (let i = 0; i < 8; i++) {
+      corners.push(new T.Vector3(i & 1 ? box.max.x : box.min.x, i & 2 ? box.max.y : box.min.y, i & 4 ? box.max.z : box.min.z));
+    }
+    const above = corners.map((p) => p.dot(groundNormal) - data.ground.height);
+    if (Math.min(...above.map(Math.abs)) <= 10 * L) {
+      corners.forEach((p, i) => box.expandByPoint(p.addScaledVector(groundNormal, -above[i])));
+    }
+  }
   const centre = box.getCenter(new T.Vector3());
   const radius = Math.max(box.getSize(new T.Vector3()).length() / 2, 0.05 * L);
   function niceStep(x) {
@@ -219,7 +231,7 @@
   // that sliding shows) of the helper grid's cells, covering the motion seen along n and a margin
   let ground = null;
   if (data.ground) {
-    const nrm = new T.Vector3().fromArray(data.ground.normal).normalize();
+    const nrm = groundNormal;
     const h = data.ground.height;
     const e1 = (Math.abs(nrm.x) < 0.9 ? new T.Vector3(1, 0, 0) : new T.Vector3(0, 1, 0));
     e1.addScaledVector(nrm, -e1.dot(nrm)).normalize();
