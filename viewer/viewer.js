@@ -359,9 +359,12 @@
   traceSelect.addEventListener('change', () => setTrace(traceSelect.value));
 
   // ---- contact forces: an arrow per collision shape from its contact point along the force on
-  // its body, |f| / scale long (cut, and darker, beyond 2 L); none where the force is zero. The
-  // contact point (src/viewer/contact.rs): on or in the ground, the shape's lowest point along
-  // the normal projected onto the ground; clear of it, the shape's point farthest along -f.
+  // its body, |f| / scale long (cut, and darker, beyond 2 L); none where the force is zero (or
+  // its arrow shorter than L / 1000). The contact point (src/viewer/contact.rs): in the ground,
+  // the centre of pressure of the shape's ground points (as the mechanics places them), each
+  // weighted by its depth (the law is linear); just clear of the ground, its lowest point; on
+  // the ground in both cases. Farther from the ground (a force from another shape), the shape's
+  // point farthest along -f.
   const withForces = contacts.filter((c) => c.f);
   let forceScale = data.forces && data.forces.scale > 0 ? data.forces.scale : 1;
   const CUT = 2 * L;
@@ -384,6 +387,31 @@
     c.state = { visible: false, base: [0, 0, 0], tip: [0, 0, 0], force: [0, 0, 0], cut: false };
   }
   const clampEdge = (x) => Math.max(-1, Math.min(1, x / EDGE));
+  // the points through which a shape touches the ground, in its frame, with their radii
+  // (src/mechanics/model/contact.rs: a sphere's centre, a capsule's segment ends, a box's
+  // corners, 12 points on each rim of a cylinder)
+  function groundPoints(s) {
+    const z = s.size;
+    if (s.kind === 'sphere') return [[new T.Vector3(), z[0]]];
+    if (s.kind === 'capsule') return [-0.5, 0.5].map((h) => [new T.Vector3(0, 0, h * z[1]), z[0]]);
+    if (s.kind === 'box') {
+      const out = [];
+      for (let k = 0; k < 8; k++) out.push([new T.Vector3((k & 1 ? 0.5 : -0.5) * z[0], (k & 2 ? 0.5 : -0.5) * z[1], (k & 4 ? 0.5 : -0.5) * z[2]), 0]);
+      return out;
+    }
+    if (s.kind === 'cylinder') {
+      const out = [];
+      for (let k = 0; k < 24; k++) {
+        const a = (2 * Math.PI * (k % 12)) / 12;
+        out.push([new T.Vector3(z[0] * Math.cos(a), z[0] * Math.sin(a), (k < 12 ? -0.5 : 0.5) * z[1]), 0]);
+      }
+      return out;
+    }
+    return [];
+  }
+  for (const c of withForces) c.points = groundPoints(c.shape);
+  const pw = new T.Vector3();
+  const pressure = new T.Vector3();
   // the point of shape s farthest along the unit direction d (both in the shape's frame)
   function support(s, d, out) {
     const z = s.size;
@@ -417,7 +445,8 @@
       const size = fv.length();
       const st = c.state;
       st.force = fv.toArray();
-      st.visible = size > 0 && Number.isFinite(size);
+      // (a force too small to draw, e.g. a zero one met by interpolation, is none)
+      st.visible = size / forceScale > 1e-3 * L && Number.isFinite(size);
       c.arrow.visible = st.visible;
       if (!st.visible) continue;
       // the shape's pose from its body's (placed for this time)
@@ -426,10 +455,24 @@
       qInv.copy(qW).invert();
       let onGround = false;
       if (ground) {
-        dl.copy(ground.normal).negate().applyQuaternion(qInv);
-        support(c.shape, dl, base).applyQuaternion(qW).add(centreW);
+        let weight = 0;
+        pressure.set(0, 0, 0);
+        for (const [p, radius] of c.points) {
+          pw.copy(p).applyQuaternion(qW).add(centreW).addScaledVector(ground.normal, -radius);
+          const depth = ground.height - pw.dot(ground.normal);
+          if (depth > 0) {
+            pressure.addScaledVector(pw, depth);
+            weight += depth;
+          }
+        }
+        if (weight > 0) {
+          base.copy(pressure).divideScalar(weight);
+        } else {
+          dl.copy(ground.normal).negate().applyQuaternion(qInv);
+          support(c.shape, dl, base).applyQuaternion(qW).add(centreW);
+        }
         const gap = base.dot(ground.normal) - ground.height;
-        if (gap <= 0.01 * L) {
+        if (weight > 0 || gap <= 0.01 * L) {
           onGround = true;
           base.addScaledVector(ground.normal, -gap);
         }

@@ -4,14 +4,17 @@
 //!
 //! The page draws the arrow of shape C from its contact point along `contact.C.f` (the force
 //! on C's body), `|f| / scale` long. The contact point is computed in the page from the pose:
-//! for a shape on or in the ground, its lowest point along the ground's normal (a face's
-//! centre, an edge's middle or a corner, blended over about a degree of tilt so that the
-//! arrow does not jump between corners of a box lying flat) projected onto the ground; for a
-//! shape clear of the ground (a force from another shape), its point farthest along `−f`.
+//! for a shape in the ground, the centre of pressure of its ground points (those of the
+//! mechanics: a sphere's centre, a capsule's two ends, a box's corners, a cylinder's 24 rim
+//! points, each lowered by its radius) weighted by their depths (the elastic law is linear),
+//! projected onto the ground; for a shape just clear of it (within 1 % of the model's size:
+//! a force met between frames), its lowest point (a face's centre, an edge's middle or a
+//! corner, blended over about a degree of tilt) projected onto the ground; for a shape
+//! farther off (a force from another shape), its point farthest along `−f`.
 
 use super::recording::Recording;
 use super::shape::{Geometry, Shape};
-use crate::math::{rpy_to_matrix, Vec3};
+use crate::math::{rpy_to_matrix, Mat3, Vec3};
 use crate::spec::Spec;
 
 /// The ground plane `normal · x = height`.
@@ -83,13 +86,94 @@ pub fn ground_normal(gravity: [f64; 3]) -> Vec3 {
     }
 }
 
-/// The ground plane of `spec`, if it has `[ground]`.
+/// The ground plane of `spec`, if it has `[ground]`, at the height the recording's gaps tell
+/// (the run may have set the parameter `ground.height`), with a warning when that is not the
+/// spec's.
 #[must_use]
-pub fn ground(spec: &Spec) -> Option<GroundPlane> {
-    spec.ground.map(|g| GroundPlane {
-        normal: ground_normal(spec.gravity),
+pub fn ground(
+    spec: &Spec,
+    recording: &Recording,
+    shapes: &[CollisionShape],
+) -> (Option<GroundPlane>, Option<String>) {
+    let Some(g) = spec.ground else {
+        return (None, None);
+    };
+    let normal = ground_normal(spec.gravity);
+    let mut plane = GroundPlane {
+        normal,
         height: g.height,
-    })
+    };
+    let Some(h) = recorded_height(normal, recording, shapes) else {
+        return (Some(plane), None);
+    };
+    let tol = 1e-9 * (1.0 + g.height.abs() + h.abs());
+    if (h - g.height).abs() <= tol {
+        return (Some(plane), None);
+    }
+    plane.height = h;
+    let shown = (h * 1e9).round() / 1e9;
+    let warning = format!(
+        "the ground is drawn at height {shown} m, where the result's contact gaps put it \
+         (the spec says {} m: a run with ground.height set?)",
+        g.height
+    );
+    (Some(plane), Some(warning))
+}
+
+/// The points of a shape that touch the ground, in its frame, each with its radius, as the
+/// mechanics places them (a cylinder: 12 points on each rim).
+fn ground_points(g: &Geometry) -> Vec<(Vec3, f64)> {
+    match *g {
+        Geometry::Sphere(r) => vec![(Vec3::zeros(), r)],
+        Geometry::Capsule { radius, length } => [-0.5, 0.5]
+            .iter()
+            .map(|s| (Vec3::new(0.0, 0.0, s * length), radius))
+            .collect(),
+        Geometry::Cuboid(d) => (0..8)
+            .map(|k| {
+                let s = |bit: usize| if k & bit == 0 { -0.5 } else { 0.5 };
+                (Vec3::new(s(1) * d[0], s(2) * d[1], s(4) * d[2]), 0.0)
+            })
+            .collect(),
+        Geometry::Cylinder { radius, length } => (0..24)
+            .map(|k| {
+                #[allow(clippy::cast_precision_loss)]
+                let a = std::f64::consts::TAU * (k % 12) as f64 / 12.0;
+                let z = if k < 12 { -0.5 } else { 0.5 } * length;
+                (Vec3::new(radius * a.cos(), radius * a.sin(), z), 0.0)
+            })
+            .collect(),
+        Geometry::Mesh { .. } => Vec::new(),
+    }
+}
+
+/// The height along `normal` of the lowest point of `shape` on a body at `(r, rot)`, m.
+fn lowest(normal: Vec3, shape: &Shape, r: Vec3, rot: &Mat3) -> Option<f64> {
+    ground_points(&shape.geometry)
+        .into_iter()
+        .map(|(p, radius)| normal.dot(&(r + rot * (shape.xyz + shape.rot * p))) - radius)
+        .reduce(f64::min)
+}
+
+/// The ground's height in the run, from the first recorded gap of every shape
+/// (`n·lowest point − gap`), if the shapes agree on it.
+fn recorded_height(normal: Vec3, recording: &Recording, shapes: &[CollisionShape]) -> Option<f64> {
+    let heights: Vec<f64> = recording
+        .contacts
+        .iter()
+        .filter_map(|t| {
+            let gap = *t.gap.as_ref()?.first()?;
+            let c = shapes.iter().find(|c| c.name == t.name)?;
+            let body = recording.bodies.get(c.body)?;
+            let low = lowest(normal, &c.shape, *body.r.first()?, body.rot.first()?)?;
+            Some(low - gap).filter(|h| h.is_finite())
+        })
+        .collect();
+    let (&first, rest) = heights.split_first()?;
+    let tol = 1e-9 * (1.0 + first.abs());
+    rest.iter()
+        .all(|h| (h - first).abs() <= tol)
+        .then_some(first)
 }
 
 /// The collision shapes of `spec` on its bodies, in the spec's order (a shape on a body the
@@ -185,6 +269,107 @@ mod tests {
         assert_eq!(ground_normal([0.0, 0.0, -9.81]), Vec3::z());
         assert_eq!(ground_normal([0.0, 0.0, 0.0]), Vec3::z());
         assert_eq!(ground_normal([3.0, 0.0, 0.0]), -Vec3::x());
+    }
+
+    /// A tilted box on a free body, with a ground at `height` and gravity `gravity`.
+    fn tilted_box(height: f64, gravity: &str) -> Spec {
+        let text = format!(
+            r#"
+            name = "Box"
+            gravity = {gravity}
+            [ground]
+            height = {height}
+            [[body]]
+            name = "b"
+            mass = 2.0
+            inertia = [0.1, 0.1, 0.1]
+            position = [0.1, 0.2, 1.0]
+            orientation = [0.9238795325112867, 0.3826834323650898, 0.0, 0.0]
+            [[collision]]
+            body = "b"
+            box = {{ size = [0.4, 0.2, 0.1] }}
+            origin = {{ xyz = [0.0, 0.0, 0.05], rpy = [0.0, 0.3, 0.0] }}
+            "#
+        );
+        Spec::from_str(&text, crate::spec::Format::Toml, "box.toml").unwrap()
+    }
+
+    #[test]
+    fn the_ground_height_from_the_gaps() {
+        let spec = tilted_box(0.0, "[0.0, 0.0, -9.81]");
+        let shapes = collision_shapes(&spec);
+        assert_eq!(shapes.len(), 1);
+        assert_eq!(shapes[0].name, "b_1");
+        assert_eq!(shapes[0].shape.geometry, Geometry::Cuboid([0.4, 0.2, 0.1]));
+        // the body's pose and the shape's gap to a ground at 0.4, as the mechanics has them
+        let r = Vec3::new(0.1, 0.2, 1.0);
+        let rot = crate::math::quat_to_matrix(&[
+            0.923_879_532_511_286_7,
+            0.382_683_432_365_089_8,
+            0.0,
+            0.0,
+        ]);
+        let corners = ground_points(&shapes[0].shape.geometry);
+        assert_eq!(corners.len(), 8);
+        let low = corners
+            .iter()
+            .map(|(p, _)| (r + rot * (shapes[0].shape.xyz + shapes[0].shape.rot * p)).z)
+            .fold(f64::INFINITY, f64::min);
+        let recording = Recording {
+            time: vec![0.0],
+            bodies: vec![super::super::BodyTrack {
+                name: "b".into(),
+                r: vec![r],
+                rot: vec![rot],
+            }],
+            contacts: vec![super::super::ContactTrack {
+                name: "b_1".into(),
+                shape: 0,
+                f: vec![Vec3::zeros()],
+                gap: Some(vec![low - 0.4]),
+            }],
+            ..Recording::default()
+        };
+        let (plane, warning) = ground(&spec, &recording, &shapes);
+        let plane = plane.unwrap();
+        assert!((plane.height - 0.4).abs() < 1e-12, "{plane:?}");
+        assert!(warning.unwrap().contains("drawn at height 0.4 m"));
+        // the spec's own height: no warning
+        let spec = tilted_box(0.4, "[0.0, 0.0, -9.81]");
+        let (plane, warning) = ground(&spec, &recording, &shapes);
+        assert_eq!(plane.unwrap().height, 0.4);
+        assert!(warning.is_none());
+        // without gaps, the spec's height
+        let mut without = recording.clone();
+        without.contacts[0].gap = None;
+        assert_eq!(ground(&spec, &without, &shapes).0.unwrap().height, 0.4);
+    }
+
+    #[test]
+    fn the_scale_from_the_weight_or_the_largest_force() {
+        let spec = tilted_box(0.0, "[0.0, 0.0, -9.81]");
+        let mut recording = Recording {
+            contacts: vec![super::super::ContactTrack {
+                name: "b_1".into(),
+                shape: 0,
+                f: vec![Vec3::new(0.0, 0.0, 300.0), Vec3::repeat(f64::NAN)],
+                gap: None,
+            }],
+            ..Recording::default()
+        };
+        // 2 kg: 19.62 N half of 1 m long, 39.24 N/m: 50
+        let s = force_scale(&spec, &recording, 1.0);
+        assert_eq!(s.basis, ForceBasis::Weight);
+        assert_eq!(s.newtons_per_metre, 50.0);
+        // without gravity, the largest force (NaN left out)
+        let spec = tilted_box(0.0, "[0.0, 0.0, 0.0]");
+        let s = force_scale(&spec, &recording, 1.0);
+        assert_eq!(
+            (s.basis, s.reference, s.newtons_per_metre),
+            (ForceBasis::Largest, 300.0, 500.0)
+        );
+        recording.contacts.clear();
+        assert_eq!(force_scale(&spec, &recording, 1.0).basis, ForceBasis::Unit);
     }
 
     #[test]

@@ -31,6 +31,9 @@ pub struct ContactTrack {
     /// Total contact force on the shape's body through the shape, world frame, N; one per
     /// recorded time (non-finite values are kept: the page draws no arrow for them).
     pub f: Vec<Vec3>,
+    /// The shape's gap to the ground (`contact.C.gap`), m, one per time, if recorded: it tells
+    /// the height of the ground the run had (`ground.height` is a tunable parameter).
+    pub gap: Option<Vec<f64>>,
 }
 
 /// What a plotted signal measures.
@@ -90,10 +93,14 @@ fn coordinate(column: &str) -> Option<(&str, usize)> {
     Some((joint, k))
 }
 
-/// The shape and component (1-based) of a contact force column `contact.C.f[i]`.
-fn contact_force(column: &str) -> Option<(&str, usize)> {
+/// The shape and component (1-based; 0 for the gap) of a contact column `contact.C.f[i]` or
+/// `contact.C.gap`.
+fn contact_column(column: &str) -> Option<(&str, usize)> {
     let rest = column.strip_prefix("contact.")?;
     let (shape, var) = rest.rsplit_once('.')?;
+    if var == "gap" {
+        return Some((shape, 0));
+    }
     let i = var.strip_prefix("f[")?.strip_suffix(']')?.parse().ok()?;
     (1..=3).contains(&i).then_some((shape, i))
 }
@@ -107,12 +114,12 @@ fn coordinate_unit(kind: JointKind, k: usize) -> &'static str {
 }
 
 impl Recording {
-    /// True for the columns a recording reads: poses, contact forces, joint coordinates,
-    /// energy and work.
+    /// True for the columns a recording reads: poses, contact forces and gaps, joint
+    /// coordinates, energy and work.
     #[must_use]
     pub fn reads(column: &str) -> bool {
         pose_body(column).is_some()
-            || contact_force(column).is_some()
+            || contact_column(column).is_some()
             || coordinate(column).is_some()
             || column == "system.energy"
             || column == "system.work"
@@ -313,6 +320,7 @@ impl Recording {
                 .iter()
                 .map(|c| ContactTrack {
                     f: keep.iter().map(|&k| c.f[k]).collect(),
+                    gap: c.gap.as_deref().map(&pick),
                     ..c.clone()
                 })
                 .collect(),
@@ -340,7 +348,15 @@ fn contacts(table: &ResultTable, spec: &Spec) -> Vec<ContactTrack> {
             let f = (0..cols[0].len())
                 .map(|k| Vec3::new(cols[0][k], cols[1][k], cols[2][k]))
                 .collect();
-            Some(ContactTrack { name, shape, f })
+            let gap = table
+                .column(&format!("contact.{name}.gap"))
+                .map(<[f64]>::to_vec);
+            Some(ContactTrack {
+                name,
+                shape,
+                f,
+                gap,
+            })
         })
         .collect()
 }
@@ -391,9 +407,10 @@ mod tests {
         assert_eq!(coordinate("joint.elbow.q"), Some(("elbow", 0)));
         assert_eq!(coordinate("joint.hip.q[2]"), Some(("hip", 2)));
         assert_eq!(coordinate("joint.hip.qd[2]"), None);
-        assert_eq!(contact_force("contact.FL_foot.f[3]"), Some(("FL_foot", 3)));
-        assert_eq!(contact_force("contact.FL_foot.f[4]"), None);
-        assert_eq!(contact_force("contact.FL_foot.gap"), None);
+        assert_eq!(contact_column("contact.FL_foot.f[3]"), Some(("FL_foot", 3)));
+        assert_eq!(contact_column("contact.FL_foot.f[4]"), None);
+        assert_eq!(contact_column("contact.FL_foot.gap"), Some(("FL_foot", 0)));
+        assert_eq!(contact_column("contact.FL_foot.v"), None);
         assert!(Recording::reads("contact.shell.f[1]"));
     }
 
@@ -401,10 +418,25 @@ mod tests {
     fn decimation_keeps_first_and_last() {
         let rec = Recording {
             time: (0..=10).map(|k| f64::from(k) * 0.01).collect(),
+            contacts: vec![ContactTrack {
+                name: "foot".into(),
+                shape: 0,
+                f: (0..=10)
+                    .map(|k| Vec3::new(0.0, 0.0, f64::from(k)))
+                    .collect(),
+                gap: Some((0..=10).map(f64::from).collect()),
+            }],
             ..Recording::default()
         };
         let d = rec.decimated(30.0);
         assert_eq!(d.time, [0.0, 0.04, 0.08, 0.1]);
+        // the forces and gaps of the kept rows
+        let f: Vec<f64> = d.contacts[0].f.iter().map(|f| f.z).collect();
+        assert_eq!(f, [0.0, 4.0, 8.0, 10.0]);
+        assert_eq!(
+            d.contacts[0].gap.as_deref(),
+            Some(&[0.0, 4.0, 8.0, 10.0][..])
+        );
         assert_eq!(d.time[0], 0.0);
         assert_eq!(*d.time.last().unwrap(), 0.1);
         assert_eq!(rec.decimated(0.0).time.len(), 11);

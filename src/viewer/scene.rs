@@ -69,11 +69,14 @@ impl Scene {
     #[must_use]
     pub fn new(spec: &Spec, recording: &Recording, paths: &MeshPaths) -> Self {
         let length = defaults::model_length(spec, recording);
+        let collisions = contact::collision_shapes(spec);
+        let (ground, warning) = contact::ground(spec, recording, &collisions);
         let mut scene = Self {
             length,
-            ground: contact::ground(spec),
-            collisions: contact::collision_shapes(spec),
+            ground,
+            collisions,
             forces: contact::force_scale(spec, recording, length),
+            warnings: warning.into_iter().collect(),
             ..Self::default()
         };
         let mut loaded: HashMap<PathBuf, Result<usize, String>> = HashMap::new();

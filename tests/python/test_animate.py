@@ -417,6 +417,69 @@ def test_ground_and_contact_forces(chromium, triad, tmp_path):
         assert not errors, errors
 
 
+TUMBLING_BOX = """
+name = "TumblingBox"
+[experiment]
+stop = 1.5
+step = 0.01
+[ground]
+damping = 1.0
+friction = 0.6
+[[body]]
+name = "box"
+mass = 2.0
+inertia = [0.0083, 0.0283, 0.0333]
+position = [0.0, 0.0, 0.5]
+orientation = [0.9238795325112867, 0.3826834323650898, 0.1, 0.0]
+angular_velocity = [1.0, 2.0, 0.0]
+[[collision]]
+body = "box"
+box = { size = [0.4, 0.2, 0.1] }
+"""
+
+
+def test_box_contact_point(chromium, triad, tmp_path):
+    """A box tumbling onto the ground: its arrow starts at the centre of pressure of its corners
+    in the ground, each weighted by its depth (one corner, an edge, a face), on the ground: to
+    1e-6 m on one corner, 5e-4 m (a thousandth of the box) between several."""
+    import itertools
+
+    spec = tmp_path / "box.toml"
+    spec.write_text(TUMBLING_BOX)
+    result, page = tmp_path / "box.csv", tmp_path / "box.html"
+    run(triad, "simulate", str(spec), "-o", str(result), "--animate", str(page), cwd=tmp_path)
+    header, data = read_csv(result)
+    col = {name: i for i, name in enumerate(header)}
+    half = np.array([0.2, 0.1, 0.05])
+    checked = {1: 0, 2: 0}
+    with Browser(chromium, *SIZE) as b:
+        b.open(page, "play=0&ui=0&forces=1")
+        b.wait_for("window.triad && window.triad.ready", timeout=60)
+        for k in range(len(data)):
+            f = data[k, [col[f"contact.box_1.f[{i}]"] for i in (1, 2, 3)]]
+            if not np.any(f):
+                continue
+            r = data[k, [col[f"body.box.r[{i}]"] for i in (1, 2, 3)]]
+            R = np.array([[data[k, col[f"body.box.R[{i},{j}]"]] for j in (1, 2, 3)] for i in (1, 2, 3)])
+            corners = [r + R @ (half * s) for s in itertools.product((-1, 1), repeat=3)]
+            depths = [(-c[2], c) for c in corners if c[2] < 0]
+            if not depths:
+                continue
+            w = sum(d for d, _ in depths)
+            expected = sum(d * c for d, c in depths) / w
+            expected[2] = 0.0
+            b.evaluate(f"window.triad.setTime({data[k, 0]})")
+            b.next_frame()
+            (arrow,) = b.evaluate("window.triad.arrows()")
+            assert arrow["visible"]
+            # (the page's f32 orientations move a corner by ~5e-8 m; the depths of ~1e-4 m that
+            # weigh several corners then move their centre by up to ~1e-4 m)
+            tol = 1e-6 if len(depths) == 1 else 5e-4
+            assert np.allclose(arrow["base"], expected, atol=tol), (data[k, 0], arrow["base"], expected)
+            checked[min(len(depths), 2)] += 1
+    assert checked[1] >= 3 and checked[2] >= 3, f"frames on one corner and on several: {checked}"
+
+
 def test_fmu_documentation_scene_ground(chromium, triad, tmp_path):
     """The bouncing ball FMU's documentation/scene.html: the ball in the air over its ground."""
     import zipfile
