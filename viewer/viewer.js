@@ -55,7 +55,13 @@
   const scene = new T.Scene();
   scene.background = new T.Color(0xeef1f5);
   const camera = new T.PerspectiveCamera(40, window.innerWidth / window.innerHeight, L / 1000, L * 1000);
-  camera.up.set(0, 0, 1);
+  // up: the ground's normal (against gravity) with a ground, else z; (side1, side2, up) is the
+  // frame the home view is set in (x, y, z for a ground normal to z)
+  const upAxis = data.ground ? new T.Vector3().fromArray(data.ground.normal).normalize() : new T.Vector3(0, 0, 1);
+  const side1 = Math.abs(upAxis.x) < 0.9 ? new T.Vector3(1, 0, 0) : new T.Vector3(0, 1, 0);
+  side1.addScaledVector(upAxis, -side1.dot(upAxis)).normalize();
+  const side2 = new T.Vector3().crossVectors(upAxis, side1);
+  camera.up.copy(upAxis);
   scene.add(camera);
   scene.add(new T.HemisphereLight(0xffffff, 0x9098a4, 1.6));
   const key = new T.DirectionalLight(0xffffff, 1.8);
@@ -199,7 +205,7 @@
   }
   if (box.isEmpty()) box.set(new T.Vector3(-L / 2, -L / 2, -L / 2), new T.Vector3(L / 2, L / 2, L / 2));
   // with a ground not far off, the view takes in the ground under the model (a dropped body)
-  const groundNormal = data.ground ? new T.Vector3().fromArray(data.ground.normal).normalize() : null;
+  const groundNormal = data.ground ? upAxis : null;
   if (groundNormal) {
     const corners = [];
     for (let i = 0; i < 8; i++) {
@@ -233,9 +239,8 @@
   if (data.ground) {
     const nrm = groundNormal;
     const h = data.ground.height;
-    const e1 = (Math.abs(nrm.x) < 0.9 ? new T.Vector3(1, 0, 0) : new T.Vector3(0, 1, 0));
-    e1.addScaledVector(nrm, -e1.dot(nrm)).normalize();
-    const e2 = new T.Vector3().crossVectors(nrm, e1);
+    const e1 = side1;
+    const e2 = side2;
     let u0 = Infinity;
     let u1 = -Infinity;
     let v0 = Infinity;
@@ -298,7 +303,7 @@
 
   const controls = new T.OrbitControls(camera, renderer.domElement);
   function home() {
-    const dir = new T.Vector3(0.55, -1.0, 0.42).normalize();
+    const dir = new T.Vector3().addScaledVector(side1, 0.55).addScaledVector(side2, -1.0).addScaledVector(upAxis, 0.42).normalize();
     const fov = (camera.fov * Math.PI) / 180;
     const aspect = Math.min(camera.aspect, 1);
     const dist = (radius / Math.sin(fov / 2)) * 1.2 / Math.max(aspect, 0.5);
