@@ -2,7 +2,10 @@
 //! `|r_page − r_csv| ≤ 1e-6 m` and the angle of `R_csvᵀ R_page` ≤ 1e-6 rad (positions travel as
 //! `f64`, orientations as `f32` unit quaternions: ≈ 1e-7 rad). Denser results are decimated to
 //! `--fps` frames per second, each kept frame being a recorded row, the first and last included.
-//! A 10 s run of the six-joint arm at 100 Hz makes a page well under 10 MB.
+//! A 10 s run of the six-joint arm at 100 Hz makes a page well under 10 MB. Contact forces
+//! (`contact.C.f[1..3]`) travel as `f32`: each component within 1.2e-7 of its own size, a zero
+//! force exactly zero, decimated with the poses; the spec's `[ground]` and `[[collision]]`
+//! shapes are in the payload.
 
 mod common;
 use common::{read_csv, triad};
@@ -133,4 +136,66 @@ fn dense_results_are_decimated_to_recorded_rows() {
     assert_eq!(rows, 1001);
     assert_eq!(frames, 51, "one frame per 20 ms, first and last included");
     assert!(dr <= 1e-6 && dtheta <= 1e-6);
+}
+
+#[test]
+fn contact_forces_round_trip_through_the_page() {
+    let dir = tempfile::tempdir().unwrap();
+    let ball = "examples/specs/bouncing_ball.toml";
+    for fps in ["100", "30"] {
+        let (csv, html) = replay(dir.path(), ball, &["--stop", "3", "--step", "0.01"], fps);
+        let (dr, dtheta, frames, rows) = errors(&csv, &html);
+        assert!(dr <= 1e-6 && dtheta <= 1e-6, "{dr:e} m, {dtheta:e} rad");
+        let (header, data) = read_csv(&csv);
+        let col = |name: &str| header.iter().position(|h| h == name).unwrap();
+        let payload = triad::viewer::payload_of(&html).unwrap();
+        let page = triad::viewer::decode(payload).unwrap();
+        assert_eq!(page.forces.len(), 1, "one collision shape");
+        let (name, forces) = &page.forces[0];
+        assert_eq!(name, "shell");
+        assert_eq!(forces.len(), frames);
+        let (mut row, mut touching, mut worst) = (0, 0, 0.0_f64);
+        for (k, &t) in page.time.iter().enumerate() {
+            while data[row][0] != t {
+                row += 1;
+            }
+            for i in 0..3 {
+                let want = data[row][col(&format!("contact.shell.f[{}]", i + 1))];
+                let got = forces[k][i];
+                if want == 0.0 {
+                    assert_eq!(got, 0.0, "a zero force stays zero (t = {t})");
+                } else {
+                    worst = worst.max((got - want).abs() / want.abs());
+                }
+            }
+            if forces[k].norm() > 0.0 {
+                touching += 1;
+            }
+        }
+        eprintln!(
+            "bouncing_ball at {fps} fps: {frames} of {rows} rows, {touching} with a contact force, \
+             force error ≤ {worst:.1e} relative"
+        );
+        assert!(worst <= 1.2e-7, "force error {worst:e}");
+        // it bounces lower and lower, and touches the ground in many rows after 1.5 s
+        assert!(
+            touching >= frames / 10,
+            "{touching} frames with a contact force"
+        );
+        let v: serde_json::Value = serde_json::from_str(payload).unwrap();
+        assert_eq!(v["ground"]["normal"], serde_json::json!([0.0, 0.0, 1.0]));
+        assert_eq!(v["ground"]["height"], 0.0);
+        assert_eq!(v["contacts"][0]["shape"]["kind"], "sphere");
+        assert_eq!(v["contacts"][0]["body"], 0);
+        // the weight (1 kg × 9.81 m/s²) about half the model's size long, rounded to 1-2-5
+        assert_eq!(v["forces"]["basis"], "weight");
+        assert!((v["forces"]["reference"].as_f64().unwrap() - 9.81).abs() < 1e-12);
+        let scale = v["forces"]["scale"].as_f64().unwrap();
+        let length = v["length"].as_f64().unwrap();
+        let arrow = 9.81 / scale / length;
+        assert!(
+            (0.2..1.3).contains(&arrow),
+            "the weight is {arrow} of the model's size"
+        );
+    }
 }

@@ -362,3 +362,49 @@ fn simulate_animate_replays_every_body_whatever_outputs_writes() {
     let html = std::fs::read_to_string(d.join("dp.html")).unwrap();
     assert!(html.contains("link2"), "the page names the bodies");
 }
+
+#[test]
+fn the_ground_is_drawn_where_the_run_had_it() {
+    // ground.height is a parameter: a run that sets it puts the ground where its gaps say
+    let dir = tempfile::tempdir().unwrap();
+    let d = dir.path();
+    let ball = root().join("examples/specs/bouncing_ball.toml");
+    let ball = ball.to_str().unwrap();
+    let ground_of = |page: &str| -> serde_json::Value {
+        let html = std::fs::read_to_string(d.join(page)).unwrap();
+        let v: serde_json::Value =
+            serde_json::from_str(triad::viewer::payload_of(&html).unwrap()).unwrap();
+        v["ground"].clone()
+    };
+    let (ok, err) = run(&["simulate", ball, "--stop", "0.5", "-o", "a.csv"], d);
+    assert!(ok, "{err}");
+    let (ok, err) = run(&["animate", ball, "a.csv", "-o", "a.html"], d);
+    assert!(ok && !err.contains("warning"), "{err}");
+    assert_eq!(ground_of("a.html")["height"], 0.0);
+    let (ok, err) = run(
+        &[
+            "simulate",
+            ball,
+            "--stop",
+            "0.5",
+            "--set",
+            "ground.height=0.25",
+            "-o",
+            "b.csv",
+            "--animate",
+            "b.html",
+        ],
+        d,
+    );
+    assert!(ok, "{err}");
+    assert!(
+        err.contains("warning: the ground is drawn at height 0.25 m, where the result's contact gaps put it (the spec says 0 m"),
+        "{err}"
+    );
+    let h = ground_of("b.html")["height"].as_f64().unwrap();
+    assert!((h - 0.25).abs() < 1e-12, "{h}");
+    assert_eq!(
+        ground_of("b.html")["normal"],
+        serde_json::json!([0.0, 0.0, 1.0])
+    );
+}

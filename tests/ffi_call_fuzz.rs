@@ -5,7 +5,8 @@
 //! freed with states outstanding. Two instances of the model live side by side and the calls
 //! go to either, so FMU states move between instances (got in one, set, serialised or freed
 //! through the other) as hosts with pools of instances do. 25 000 calls on each shipped model
-//! and on the bouncing ball (contact).
+//! and on the bouncing ball (contact). With `TRIAD_DYNAMIC_TESTS=1` the calls go to the shared
+//! library `TRIAD_CDYLIB` loaded as an importer loads it (CI: the glibc-2.17 runtime).
 //!
 //! Asserted after every call: no panic and no `fmi2Fatal` (nothing reaches the poisoning
 //! path), a status among the five of FMI 2.0 (never `fmi2Pending`), an `fmi2Error` changes
@@ -16,10 +17,8 @@ mod fmu_support;
 
 use fmu_support::*;
 use std::ffi::CString;
-use triad::ffi::common::*;
-use triad::ffi::cosim::*;
-use triad::ffi::getset::*;
-use triad::ffi::state::*;
+// the FMI functions linked, or loaded from the runtime (TRIAD_DYNAMIC_TESTS, fmu_support::api)
+use fmu_support::api::*;
 use triad::ffi::types::*;
 use triad::variables::{Causality, VarType};
 
@@ -413,6 +412,12 @@ impl Driver<'_> {
 
 #[test]
 fn random_call_sequences_keep_every_promise() {
+    if std::env::var_os("TRIAD_DYNAMIC_TESTS").is_some() {
+        assert!(
+            dynamic(),
+            "TRIAD_DYNAMIC_TESTS is set, yet the runtime was not loaded"
+        );
+    }
     let mut total = 0usize;
     let mut moved = 0usize;
     // (call kind, status) → count: the sequence must reach every state and outcome

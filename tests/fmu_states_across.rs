@@ -8,8 +8,8 @@
 
 mod fmu_support;
 
+use fmu_support::api::*;
 use fmu_support::*;
-use triad::ffi::state::*;
 use triad::ffi::types::*;
 use triad::variables::Causality;
 

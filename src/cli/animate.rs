@@ -20,7 +20,8 @@ pub struct AnimateArgs {
     /// inertia).
     pub model: String,
     /// Result CSV with the FMU's variable names: `time`, `body.B.r[i]`, `body.B.R[i,j]` for every
-    /// body (`triad simulate` writes them; so does fmpy's write_csv when they are recorded).
+    /// body (`triad simulate` writes them; so does fmpy's write_csv when they are recorded), and
+    /// `contact.C.f[i]` for the contact-force arrows.
     #[arg(value_name = "RESULT.csv")]
     pub result: PathBuf,
     /// Output file (default: RESULT with the extension .html).

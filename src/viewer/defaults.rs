@@ -4,7 +4,8 @@
 //! (sides `a² = 6 (I₂ + I₃ − I₁) / m` along the principal axes), so that a spin about any axis
 //! shows. The box's sides are kept between 2.5 capsule radii and twice the body's reach (its
 //! farthest joint, site or centre of mass from its origin): some URDFs carry placeholder
-//! inertias much larger than the link.
+//! inertias much larger than the link. A body with collision shapes is drawn with those
+//! instead of its box.
 
 use crate::math::{Mat3, Vec3};
 use crate::spec::Spec;
@@ -92,11 +93,13 @@ fn capsule(a: Vec3, b: Vec3, radius: f64) -> Option<Shape> {
         rot: Mat3::from_columns(&[x, y, z]),
         rgba: None,
         default: true,
+        faceted: false,
     })
 }
 
-/// The default shapes of body `b` of `spec` in a model of size `length`.
-pub(super) fn shapes(spec: &Spec, b: usize, length: f64) -> Vec<Shape> {
+/// The default shapes of body `b` of `spec` in a model of size `length`; `inertia`: with the
+/// box of its mass and inertia (a body with collision shapes is drawn with those instead).
+pub(super) fn shapes(spec: &Spec, b: usize, length: f64, inertia: bool) -> Vec<Shape> {
     let body = &spec.body[b];
     let radius = (CAPSULE_SHARE * length).max(1e-3);
     let mut points: Vec<Vec3> = spec
@@ -131,6 +134,7 @@ pub(super) fn shapes(spec: &Spec, b: usize, length: f64) -> Vec<Shape> {
         rot: Mat3::identity(),
         rgba: None,
         default: true,
+        faceted: false,
     });
     // a body's joints and sites bound its box (some URDFs carry placeholder inertias far
     // larger than the link)
@@ -140,6 +144,9 @@ pub(super) fn shapes(spec: &Spec, b: usize, length: f64) -> Vec<Shape> {
     } else {
         f64::INFINITY
     };
+    if !inertia {
+        return out;
+    }
     if let Some((sides, axes)) = inertia_box(body.mass, &body.inertia.matrix()) {
         let sides = sides.map(|s| s.clamp(2.5 * radius, cap.max(2.5 * radius)));
         out.push(Shape {
@@ -148,6 +155,7 @@ pub(super) fn shapes(spec: &Spec, b: usize, length: f64) -> Vec<Shape> {
             rot: axes,
             rgba: None,
             default: true,
+            faceted: false,
         });
     }
     out

@@ -1,14 +1,16 @@
 //! The data embedded in the page: one JSON object whose bulk arrays are base64 strings of
 //! little-endian numbers. Body positions are `f64` (exact); orientations are unit quaternions
 //! `[x, y, z, w]` in `f32`, sign-continuous over time (≤ 2e-7 rad from the recorded rotation);
-//! signals are `f32`; mesh vertices are quantised to `u16` over each part's bounding box
-//! (a step of 1/65535 of the box) with `u16` or `u32` indices. [`decode`] reads the poses back.
+//! signals and contact forces are `f32` (a force's components within 6e-8 of their own size);
+//! mesh vertices are quantised to `u16` over each part's bounding box (a step of 1/65535 of
+//! the box) with `u16` or `u32` indices. [`decode`] reads the poses and forces back.
 
 use base64::engine::general_purpose::STANDARD;
 use base64::Engine as _;
 use serde::Serialize;
 use serde_json::Value;
 
+use super::contact::ForceBasis;
 use super::mesh::MeshPart;
 use super::recording::{Recording, SignalKind};
 use super::scene::Scene;
@@ -30,6 +32,36 @@ struct Payload<'a> {
     sites: Vec<SiteOut<'a>>,
     signals: Vec<SignalOut<'a>>,
     meshes: Vec<Vec<PartOut>>,
+    #[serde(skip_serializing_if = "Option::is_none")]
+    ground: Option<GroundOut>,
+    contacts: Vec<ContactOut<'a>>,
+    forces: ForcesOut,
+}
+
+#[derive(Serialize)]
+struct GroundOut {
+    normal: [f64; 3],
+    height: f64,
+}
+
+#[derive(Serialize)]
+struct ContactOut<'a> {
+    name: &'a str,
+    body: usize,
+    shape: ShapeOut,
+    /// `contact.C.f` per frame (3 `f32` each), if recorded.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    f: Option<String>,
+}
+
+#[derive(Serialize)]
+struct ForcesOut {
+    /// N per m of arrow.
+    scale: f64,
+    /// The force the scale was chosen from, N.
+    reference: f64,
+    /// `weight`, `largest` or `unit`.
+    basis: &'static str,
 }
 
 #[derive(Serialize)]
@@ -51,6 +83,8 @@ struct ShapeOut {
     #[serde(skip_serializing_if = "Option::is_none")]
     rgba: Option<[f64; 4]>,
     default: bool,
+    #[serde(skip_serializing_if = "std::ops::Not::not")]
+    faceted: bool,
 }
 
 #[derive(Serialize)]
@@ -115,6 +149,7 @@ fn shape(s: &Shape) -> ShapeOut {
         q: xyzw(&s.rot),
         rgba: s.rgba,
         default: s.default,
+        faceted: s.faceted,
     }
 }
 
@@ -227,17 +262,47 @@ pub fn encode(name: &str, scene: &Scene, recording: &Recording) -> String {
             .iter()
             .map(|m| m.parts.iter().map(part).collect())
             .collect(),
+        ground: scene.ground.map(|g| GroundOut {
+            normal: g.normal.into(),
+            height: g.height,
+        }),
+        contacts: scene
+            .collisions
+            .iter()
+            .map(|c| ContactOut {
+                name: &c.name,
+                body: c.body,
+                shape: shape(&c.shape),
+                f: recording
+                    .contacts
+                    .iter()
+                    .find(|t| t.name == c.name)
+                    .map(|t| b64_f32(t.f.iter().flat_map(|f| [f.x, f.y, f.z]))),
+            })
+            .collect(),
+        forces: ForcesOut {
+            scale: scene.forces.newtons_per_metre,
+            reference: scene.forces.reference,
+            basis: match scene.forces.basis {
+                ForceBasis::Weight => "weight",
+                ForceBasis::Largest => "largest",
+                ForceBasis::Unit => "unit",
+            },
+        },
     };
     serde_json::to_string(&payload).unwrap_or_default()
 }
 
-/// The poses of a payload, read back as the page reads them.
+/// The poses and contact forces of a payload, read back as the page reads them.
 #[derive(Clone, Debug, PartialEq)]
 pub struct DecodedPoses {
     /// Frame times, s.
     pub time: Vec<f64>,
     /// Per body: name, origins (world frame, m) and rotations world ← body, one per frame.
     pub bodies: Vec<(String, Vec<Vec3>, Vec<Mat3>)>,
+    /// Per collision shape with recorded forces: name and `contact.C.f` (world frame, N), one
+    /// per frame.
+    pub forces: Vec<(String, Vec<Vec3>)>,
 }
 
 fn bytes(v: &Value, what: &str) -> Result<Vec<u8>, String> {
@@ -288,5 +353,36 @@ pub fn decode(json: &str) -> Result<DecodedPoses, String> {
         }
         bodies.push((name, r, rot));
     }
-    Ok(DecodedPoses { time, bodies })
+    let mut forces = Vec::new();
+    for c in v["contacts"].as_array().map_or(&[][..], Vec::as_slice) {
+        let name = c["name"]
+            .as_str()
+            .ok_or("a contact without a name")?
+            .to_string();
+        if c["f"].is_null() {
+            continue;
+        }
+        let f: Vec<Vec3> = bytes(&c["f"], "f")?
+            .chunks_exact(12)
+            .map(|c| {
+                Vec3::from_fn(|i, _| {
+                    let b = &c[4 * i..4 * i + 4];
+                    f64::from(f32::from_le_bytes(b.try_into().unwrap_or_default()))
+                })
+            })
+            .collect();
+        if f.len() != time.len() {
+            return Err(format!(
+                "contact {name}: {} forces for {} times",
+                f.len(),
+                time.len()
+            ));
+        }
+        forces.push((name, f));
+    }
+    Ok(DecodedPoses {
+        time,
+        bodies,
+        forces,
+    })
 }

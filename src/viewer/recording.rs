@@ -1,6 +1,7 @@
 //! A recorded motion: the time of every kept row and, for every body of the model, the pose of
-//! its frame (position and rotation world ← body), plus the signals the page plots. Built from a
-//! result CSV ([`Recording::from_table`]) or directly (the FMU's initial pose).
+//! its frame (position and rotation world ← body), the contact force through every collision
+//! shape whose outputs were recorded, and the signals the page plots. Built from a result CSV
+//! ([`Recording::from_table`]) or directly (the FMU's initial pose).
 
 use std::collections::BTreeSet;
 
@@ -18,6 +19,21 @@ pub struct BodyTrack {
     pub r: Vec<Vec3>,
     /// Rotation world ← body (columns are the body axes in world coordinates); one per time.
     pub rot: Vec<Mat3>,
+}
+
+/// The contact force through one collision shape over the recording (`contact.C.f[1..3]`).
+#[derive(Clone, Debug, PartialEq)]
+pub struct ContactTrack {
+    /// The shape's name (as `Spec::collision_names` gives it).
+    pub name: String,
+    /// Index of the shape among the spec's `[[collision]]` entries.
+    pub shape: usize,
+    /// Total contact force on the shape's body through the shape, world frame, N; one per
+    /// recorded time (non-finite values are kept: the page draws no arrow for them).
+    pub f: Vec<Vec3>,
+    /// The shape's gap to the ground (`contact.C.gap`), m, one per time, if recorded: it tells
+    /// the height of the ground the run had (`ground.height` is a tunable parameter).
+    pub gap: Option<Vec<f64>>,
 }
 
 /// What a plotted signal measures.
@@ -52,6 +68,9 @@ pub struct Recording {
     pub time: Vec<f64>,
     /// One track per body of the model, in the spec's order.
     pub bodies: Vec<BodyTrack>,
+    /// One track per collision shape whose three force columns are in the result, in the
+    /// spec's order (none for a result without them: the page then has no force arrows).
+    pub contacts: Vec<ContactTrack>,
     /// Plotted signals (joint coordinates, energy balance), in CSV order.
     pub signals: Vec<Signal>,
 }
@@ -74,6 +93,18 @@ fn coordinate(column: &str) -> Option<(&str, usize)> {
     Some((joint, k))
 }
 
+/// The shape and component (1-based; 0 for the gap) of a contact column `contact.C.f[i]` or
+/// `contact.C.gap`.
+fn contact_column(column: &str) -> Option<(&str, usize)> {
+    let rest = column.strip_prefix("contact.")?;
+    let (shape, var) = rest.rsplit_once('.')?;
+    if var == "gap" {
+        return Some((shape, 0));
+    }
+    let i = var.strip_prefix("f[")?.strip_suffix(']')?.parse().ok()?;
+    (1..=3).contains(&i).then_some((shape, i))
+}
+
 /// Unit of coordinate `k` (1-based, 0 for the only one) of a joint of type `kind`.
 fn coordinate_unit(kind: JointKind, k: usize) -> &'static str {
     match (kind, k) {
@@ -83,10 +114,12 @@ fn coordinate_unit(kind: JointKind, k: usize) -> &'static str {
 }
 
 impl Recording {
-    /// True for the columns a recording reads: poses, joint coordinates, energy and work.
+    /// True for the columns a recording reads: poses, contact forces and gaps, joint
+    /// coordinates, energy and work.
     #[must_use]
     pub fn reads(column: &str) -> bool {
         pose_body(column).is_some()
+            || contact_column(column).is_some()
             || coordinate(column).is_some()
             || column == "system.energy"
             || column == "system.work"
@@ -190,6 +223,7 @@ impl Recording {
         }
         let rec = Self {
             signals: signals(table, spec),
+            contacts: contacts(table, spec),
             time,
             bodies,
         };
@@ -281,6 +315,15 @@ impl Recording {
                     rot: keep.iter().map(|&k| b.rot[k]).collect(),
                 })
                 .collect(),
+            contacts: self
+                .contacts
+                .iter()
+                .map(|c| ContactTrack {
+                    f: keep.iter().map(|&k| c.f[k]).collect(),
+                    gap: c.gap.as_deref().map(&pick),
+                    ..c.clone()
+                })
+                .collect(),
             signals: self
                 .signals
                 .iter()
@@ -291,6 +334,31 @@ impl Recording {
                 .collect(),
         }
     }
+}
+
+/// The contact forces of `spec`'s collision shapes whose three columns `table` has.
+fn contacts(table: &ResultTable, spec: &Spec) -> Vec<ContactTrack> {
+    spec.collision_names()
+        .into_iter()
+        .enumerate()
+        .filter_map(|(shape, name)| {
+            let cols: Vec<&[f64]> = (1..=3)
+                .map(|i| table.column(&format!("contact.{name}.f[{i}]")))
+                .collect::<Option<_>>()?;
+            let f = (0..cols[0].len())
+                .map(|k| Vec3::new(cols[0][k], cols[1][k], cols[2][k]))
+                .collect();
+            let gap = table
+                .column(&format!("contact.{name}.gap"))
+                .map(<[f64]>::to_vec);
+            Some(ContactTrack {
+                name,
+                shape,
+                f,
+                gap,
+            })
+        })
+        .collect()
 }
 
 /// The joint coordinates of `spec`'s joints found in `table`, then the energy balance.
@@ -339,16 +407,36 @@ mod tests {
         assert_eq!(coordinate("joint.elbow.q"), Some(("elbow", 0)));
         assert_eq!(coordinate("joint.hip.q[2]"), Some(("hip", 2)));
         assert_eq!(coordinate("joint.hip.qd[2]"), None);
+        assert_eq!(contact_column("contact.FL_foot.f[3]"), Some(("FL_foot", 3)));
+        assert_eq!(contact_column("contact.FL_foot.f[4]"), None);
+        assert_eq!(contact_column("contact.FL_foot.gap"), Some(("FL_foot", 0)));
+        assert_eq!(contact_column("contact.FL_foot.v"), None);
+        assert!(Recording::reads("contact.shell.f[1]"));
     }
 
     #[test]
     fn decimation_keeps_first_and_last() {
         let rec = Recording {
             time: (0..=10).map(|k| f64::from(k) * 0.01).collect(),
+            contacts: vec![ContactTrack {
+                name: "foot".into(),
+                shape: 0,
+                f: (0..=10)
+                    .map(|k| Vec3::new(0.0, 0.0, f64::from(k)))
+                    .collect(),
+                gap: Some((0..=10).map(f64::from).collect()),
+            }],
             ..Recording::default()
         };
         let d = rec.decimated(30.0);
         assert_eq!(d.time, [0.0, 0.04, 0.08, 0.1]);
+        // the forces and gaps of the kept rows
+        let f: Vec<f64> = d.contacts[0].f.iter().map(|f| f.z).collect();
+        assert_eq!(f, [0.0, 4.0, 8.0, 10.0]);
+        assert_eq!(
+            d.contacts[0].gap.as_deref(),
+            Some(&[0.0, 4.0, 8.0, 10.0][..])
+        );
         assert_eq!(d.time[0], 0.0);
         assert_eq!(*d.time.last().unwrap(), 0.1);
         assert_eq!(rec.decimated(0.0).time.len(), 11);

@@ -1,11 +1,14 @@
 //! What the page draws: every body's shapes in its body frame, the shapes fixed in the world,
 //! the sites, and the meshes they use. Shapes come from the spec's `[[visual]]` entries (a
 //! URDF's `<visual>` elements); a body without any, or whose mesh cannot be read, gets its
-//! default shape ([`super::defaults`]).
+//! default shape ([`super::defaults`]), whose inertia box gives way to the body's collision
+//! shapes if it has any. The ground, the collision shapes and the force arrows' scale come
+//! from [`super::contact`].
 
 use std::collections::HashMap;
 use std::path::PathBuf;
 
+use super::contact::{self, CollisionShape, ForceScale, GroundPlane};
 use super::defaults;
 use super::mesh::{self, MeshPaths, TriMesh};
 use super::recording::Recording;
@@ -52,6 +55,12 @@ pub struct Scene {
     pub length: f64,
     /// What could not be drawn as asked (missing or unreadable meshes), one line each.
     pub warnings: Vec<String>,
+    /// The ground plane (`[ground]`).
+    pub ground: Option<GroundPlane>,
+    /// The collision shapes (`[[collision]]`), drawn on demand.
+    pub collisions: Vec<CollisionShape>,
+    /// The scale of the contact-force arrows.
+    pub forces: ForceScale,
 }
 
 impl Scene {
@@ -60,8 +69,14 @@ impl Scene {
     #[must_use]
     pub fn new(spec: &Spec, recording: &Recording, paths: &MeshPaths) -> Self {
         let length = defaults::model_length(spec, recording);
+        let collisions = contact::collision_shapes(spec);
+        let (ground, warning) = contact::ground(spec, recording, &collisions);
         let mut scene = Self {
             length,
+            ground,
+            collisions,
+            forces: contact::force_scale(spec, recording, length),
+            warnings: warning.into_iter().collect(),
             ..Self::default()
         };
         let mut loaded: HashMap<PathBuf, Result<usize, String>> = HashMap::new();
@@ -96,6 +111,7 @@ impl Scene {
                 rot: rpy_to_matrix(&Vec3::from(v.origin.rpy)),
                 rgba: v.rgba,
                 default: false,
+                faceted: false,
             };
             match host {
                 Some(b) => shapes[b].push(shape),
@@ -105,7 +121,17 @@ impl Scene {
         for (b, body) in spec.body.iter().enumerate() {
             let mut own = std::mem::take(&mut shapes[b]);
             if own.is_empty() || fallback[b] {
-                own.extend(defaults::shapes(spec, b, length));
+                let collision: Vec<Shape> = scene
+                    .collisions
+                    .iter()
+                    .filter(|c| c.body == b)
+                    .map(|c| Shape {
+                        faceted: true,
+                        ..c.shape.clone()
+                    })
+                    .collect();
+                own.extend(defaults::shapes(spec, b, length, collision.is_empty()));
+                own.extend(collision);
             }
             scene.bodies.push(BodyShapes {
                 name: body.name.clone(),

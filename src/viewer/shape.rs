@@ -45,4 +45,7 @@ pub struct Shape {
     pub rgba: Option<[f64; 4]>,
     /// True for a default shape drawn from the model's mass data and joints.
     pub default: bool,
+    /// Drawn with coarse flat facets, so that a turn about an axis of symmetry shows (a
+    /// collision shape standing in for the look of a body without `[[visual]]`).
+    pub faceted: bool,
 }

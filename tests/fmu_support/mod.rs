@@ -14,10 +14,8 @@
 use std::ffi::{c_char, c_void, CStr, CString};
 use std::path::PathBuf;
 use std::sync::Mutex;
-use triad::ffi::common::*;
-use triad::ffi::cosim::*;
-use triad::ffi::getset::*;
-use triad::ffi::state::*;
+pub mod api;
+use api::*;
 use triad::ffi::types::*;
 use triad::fmu::contract::{self, Format, Spec};
 use triad::variables::{Causality, VariableTable};

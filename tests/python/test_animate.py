@@ -12,6 +12,12 @@ with STL, OBJ and DAE meshes -- and checks that
 - moving the time slider changes the picture, and the bodies are then where the CSV puts them
   at the new time.
 
+With contact (examples/specs/bouncing_ball.toml), the page draws the spec's ground where it is
+(each checker cell's centre, projected from the plane of the spec, shows its cell's tone) and,
+with #forces=1, an arrow from the ball's contact point along the CSV's contact.shell.f, |f| /
+scale long: its pixels reach from the contact point to the tip and no further, and there is
+none while the ball flies. The FMU's documentation/scene.html shows the ground as well.
+
 Screenshots are kept in target/screenshots/. Without Chromium the test skips locally and FAILS
 under CI=true (CI installs it).
 """
@@ -236,6 +242,258 @@ def test_fmpy_example(triad, tmp_path):
         r = np.frombuffer(base64.b64decode(body["r"]), dtype="<f8").reshape(-1, 3)
         k = header.index(f"body.{body['name']}.r[1]")
         assert np.max(np.abs(r - data[:, k:k + 3])) <= 1e-6
+
+
+BALL = "examples/specs/bouncing_ball.toml"
+
+
+def payload(html):
+    import json
+    import re
+
+    m = re.search(r'<script type="application/json" id="triad-data">(.*?)</script>', html, re.S)
+    return json.loads(m.group(1))
+
+
+def lum(img, x, y, r=1):
+    """Mean luminance of the (2r+1)^2 patch at page pixel (x, y)."""
+    xi, yi = int(round(x)), int(round(y))
+    return float(img[yi - r:yi + r + 1, xi - r:xi + r + 1].mean())
+
+
+def on_page(x, y, margin=4):
+    return margin <= x < SIZE[0] - margin and margin <= y < SIZE[1] - margin
+
+
+def check_ground(b, name):
+    """The ground's pixels: every checker cell near the model whose centre, projected from the
+    page's reported plane, is well inside the page shows its cell's tone (odd cells darker)."""
+    g = b.evaluate("window.triad.ground")
+    b.evaluate("window.triad.setRobotVisible(false); window.triad.showForces(false); window.triad.setHelpersVisible(false)")
+    b.next_frame()
+    a = image(b.screenshot(str(SHOTS / f"{name}_ground.png")))
+    b.evaluate("window.triad.setGroundVisible(false)")
+    b.next_frame()
+    e = image(b.screenshot())
+    b.evaluate("window.triad.setGroundVisible(true); window.triad.setRobotVisible(true); window.triad.setHelpersVisible(true)")
+    b.next_frame()
+    mask = changed(a, e, tol=0.03)
+    assert mask.mean() > 0.15, f"{name}: the ground covers only {mask.mean():.1%} of the page"
+    n, h, cell = np.array(g["normal"]), g["height"], g["cell"]
+    assert np.allclose(n, [0, 0, 1]), n
+    corners = np.array(g["corners"])
+    assert np.allclose(corners[:, 2], h), "the drawn square lies in the plane"
+    tones = {0: [], 1: []}
+    for iu in range(-12, 12):
+        for iv in range(-12, 12):
+            centre = [(iu + 0.5) * cell, (iv + 0.5) * cell, h]
+            x, y, _ = b.evaluate(f"window.triad.project({centre[0]}, {centre[1]}, {centre[2]})")
+            x1, y1, _ = b.evaluate(f"window.triad.project({centre[0] + cell}, {centre[1]}, {centre[2]})")
+            x2, y2, _ = b.evaluate(f"window.triad.project({centre[0]}, {centre[1] + cell}, {centre[2]})")
+            small = min(np.hypot(x1 - x, y1 - y), np.hypot(x2 - x, y2 - y))
+            inside = np.all(corners[:, :2].min(axis=0) < centre[:2]) and np.all(centre[:2] < corners[:, :2].max(axis=0))
+            if not inside or not on_page(x, y, 10) or small < 14:
+                continue
+            assert covered(mask, x, y, r=1), f"{name}: no ground at cell ({iu}, {iv})"
+            tones[(iu + iv) & 1].append(lum(a, x, y))
+    assert len(tones[0]) >= 10 and len(tones[1]) >= 10, f"{name}: too few cells seen: {tones}"
+    assert max(tones[1]) < min(tones[0]) - 0.03, (
+        f"{name}: the checker's tones do not follow the cells of the plane z = {h}: "
+        f"light {min(tones[0]):.3f}..{max(tones[0]):.3f}, dark {min(tones[1]):.3f}..{max(tones[1]):.3f}")
+    return g
+
+
+def arrow_pixels(b, name):
+    """The pixels the force arrows add (robot and ground hidden)."""
+    b.evaluate("window.triad.setRobotVisible(false); window.triad.setGroundVisible(false); window.triad.showForces(true)")
+    b.next_frame()
+    a = image(b.screenshot(str(SHOTS / f"{name}.png")))
+    b.evaluate("window.triad.showForces(false)")
+    b.next_frame()
+    e = image(b.screenshot())
+    b.evaluate("window.triad.setRobotVisible(true); window.triad.setGroundVisible(true); window.triad.showForces(true)")
+    b.next_frame()
+    return changed(a, e)
+
+
+def check_arrow(b, name, base, tip):
+    """The arrow's pixels cover the segment from the projected base to the projected tip, reach
+    the tip and go no further, and stay near the segment."""
+    mask = arrow_pixels(b, name)
+    (x0, y0, _), (x1, y1, _) = (b.evaluate(f"window.triad.project({p[0]}, {p[1]}, {p[2]})") for p in (base, tip))
+    assert on_page(x0, y0) and on_page(x1, y1), f"{name}: the arrow is off the page"
+    d = np.array([x1 - x0, y1 - y0])
+    length = np.linalg.norm(d)
+    assert length > 40, f"{name}: the arrow is only {length:.0f} px long"
+    for s in (0.05, 0.3, 0.6, 0.9, 0.98):
+        assert covered(mask, x0 + s * d[0], y0 + s * d[1], r=2), f"{name}: no arrow pixel at {s:.0%} of its length"
+    ys, xs = np.nonzero(mask)
+    rel = np.stack([xs - x0, ys - y0], axis=1)
+    along = rel @ (d / length)
+    across = np.abs(rel @ (np.array([-d[1], d[0]]) / length))
+    assert across.max() < 0.012 * SIZE[0] + 0.2 * length, f"{name}: pixels {across.max():.0f} px off the arrow"
+    assert abs(along.max() - length) <= 3 + 0.03 * length, (
+        f"{name}: the arrow reaches {along.max():.0f} px, its tip is {length:.0f} px from its base")
+    assert along.min() >= -12, f"{name}: pixels {-along.min():.0f} px behind the base"
+
+
+def test_ground_and_contact_forces(chromium, triad, tmp_path):
+    """The bouncing ball: its ground, and its contact force as an arrow (see the module doc)."""
+    result, page = tmp_path / "ball.csv", tmp_path / "ball.html"
+    run(triad, "simulate", str(ROOT / BALL), "--stop", "3", "--step", "0.01", "-o", str(result),
+        "--animate", str(page), cwd=tmp_path)
+    header, data = read_csv(result)
+    col = {name: i for i, name in enumerate(header)}
+    pay = payload(page.read_text())
+    L = pay["length"]
+    f = data[:, [col[f"contact.shell.f[{i}]"] for i in (1, 2, 3)]]
+    r = data[:, [col[f"body.ball.r[{i}]"] for i in (1, 2, 3)]]
+    SHOTS.mkdir(parents=True, exist_ok=True)
+    with Browser(chromium, *SIZE) as b:
+        b.open(page, "play=0&ui=0&forces=1&t=1")
+        b.wait_for("window.triad && window.triad.ready", timeout=60)
+        assert b.evaluate("window.triad.contacts") == ["shell"]
+        show(b, 1.0)
+        g = check_ground(b, "ball_t1")
+        assert g["height"] == 0.0
+        scale = b.evaluate("window.triad.forceScale()")
+        assert scale == pay["forces"]["scale"] > 0
+
+        # a force of a fair length at the default scale: the arrow from the ball's lowest point
+        # (on the ground under its centre) along contact.shell.f
+        lengths = np.linalg.norm(f, axis=1) / scale
+        k = next(k for k in range(len(data)) if data[k, 0] > 1.0 and 0.3 * L < lengths[k] < 1.2 * L)
+        t = data[k, 0]
+        show(b, t)
+        (arrow,) = b.evaluate("window.triad.arrows()")
+        base = np.array([r[k, 0], r[k, 1], g["height"]])
+        tip = base + f[k] / scale
+        assert arrow["visible"] and not arrow["cut"], arrow
+        assert np.allclose(arrow["force"], f[k], rtol=1e-6, atol=1e-9), (arrow["force"], f[k])
+        assert np.allclose(arrow["base"], base, atol=1e-9), (arrow["base"], base)
+        assert np.allclose(arrow["tip"], tip, atol=1e-6), (arrow["tip"], tip)
+        check_arrow(b, "ball_force", base, tip)
+
+        # the first impact (about 1440 N, tilted by friction): cut at 2 L at the default scale;
+        # at 1000 N per m drawn whole
+        k = int(np.argmax(np.linalg.norm(f, axis=1)))
+        show(b, data[k, 0])
+        (arrow,) = b.evaluate("window.triad.arrows()")
+        assert arrow["cut"] and np.isclose(np.linalg.norm(np.subtract(arrow["tip"], arrow["base"])), 2 * L)
+        b.evaluate("window.triad.setForceScale(1000)")
+        b.next_frame()
+        (arrow,) = b.evaluate("window.triad.arrows()")
+        base = np.array([r[k, 0], r[k, 1], g["height"]])
+        tip = base + f[k] / 1000
+        assert abs(f[k, 0]) > 0.05 * abs(f[k, 2]), "friction tilts the first impact's force"
+        assert not arrow["cut"] and np.allclose(arrow["tip"], tip, atol=1e-6), (arrow, tip)
+        check_arrow(b, "ball_impact", base, tip)
+        b.evaluate(f"window.triad.setForceScale({scale})")
+
+        # in flight: no force, no arrow
+        show(b, 0.2)
+        assert np.all(f[int(np.argmin(np.abs(data[:, 0] - 0.2)))] == 0)
+        (arrow,) = b.evaluate("window.triad.arrows()")
+        assert not arrow["visible"]
+        assert not arrow_pixels(b, "ball_flight").any(), "an arrow for a zero force"
+
+        # the collision shapes on demand: the wireframe over the ball
+        show(b, 1.0)
+        b.evaluate("window.triad.showForces(false)")
+        b.next_frame()
+        plain = image(b.screenshot())
+        b.evaluate("window.triad.showCollision(true)")
+        b.next_frame()
+        wired = image(b.screenshot(str(SHOTS / "ball_collision.png")))
+        k = int(np.argmin(np.abs(data[:, 0] - 1.0)))
+        x, y, _ = b.evaluate(f"window.triad.project({r[k, 0]}, {r[k, 1]}, {r[k, 2]})")
+        assert covered(changed(plain, wired, tol=0.03), x, y, r=12), "no wireframe on the ball"
+
+        b.evaluate("window.triad.setUi(true); window.triad.showCollision(false); window.triad.showForces(true)")
+        show(b, t)
+        b.screenshot(str(SHOTS / "ball_ui.png"))
+        errors = [e for e in b.events if e.get("method") == "Runtime.exceptionThrown"
+                  or (e.get("method") == "Runtime.consoleAPICalled" and e["params"].get("type") in ("error", "warning"))]
+        assert not errors, errors
+
+
+TUMBLING_BOX = """
+name = "TumblingBox"
+[experiment]
+stop = 1.5
+step = 0.01
+[ground]
+damping = 1.0
+friction = 0.6
+[[body]]
+name = "box"
+mass = 2.0
+inertia = [0.0083, 0.0283, 0.0333]
+position = [0.0, 0.0, 0.5]
+orientation = [0.9238795325112867, 0.3826834323650898, 0.1, 0.0]
+angular_velocity = [1.0, 2.0, 0.0]
+[[collision]]
+body = "box"
+box = { size = [0.4, 0.2, 0.1] }
+"""
+
+
+def test_box_contact_point(chromium, triad, tmp_path):
+    """A box tumbling onto the ground: its arrow starts at the centre of pressure of its corners
+    in the ground, each weighted by its depth (one corner, an edge, a face), on the ground: to
+    1e-6 m on one corner, 5e-4 m (a thousandth of the box) between several."""
+    import itertools
+
+    spec = tmp_path / "box.toml"
+    spec.write_text(TUMBLING_BOX)
+    result, page = tmp_path / "box.csv", tmp_path / "box.html"
+    run(triad, "simulate", str(spec), "-o", str(result), "--animate", str(page), cwd=tmp_path)
+    header, data = read_csv(result)
+    col = {name: i for i, name in enumerate(header)}
+    half = np.array([0.2, 0.1, 0.05])
+    checked = {1: 0, 2: 0}
+    with Browser(chromium, *SIZE) as b:
+        b.open(page, "play=0&ui=0&forces=1")
+        b.wait_for("window.triad && window.triad.ready", timeout=60)
+        for k in range(len(data)):
+            f = data[k, [col[f"contact.box_1.f[{i}]"] for i in (1, 2, 3)]]
+            if not np.any(f):
+                continue
+            r = data[k, [col[f"body.box.r[{i}]"] for i in (1, 2, 3)]]
+            R = np.array([[data[k, col[f"body.box.R[{i},{j}]"]] for j in (1, 2, 3)] for i in (1, 2, 3)])
+            corners = [r + R @ (half * s) for s in itertools.product((-1, 1), repeat=3)]
+            depths = [(-c[2], c) for c in corners if c[2] < 0]
+            if not depths:
+                continue
+            w = sum(d for d, _ in depths)
+            expected = sum(d * c for d, c in depths) / w
+            expected[2] = 0.0
+            b.evaluate(f"window.triad.setTime({data[k, 0]})")
+            b.next_frame()
+            (arrow,) = b.evaluate("window.triad.arrows()")
+            assert arrow["visible"]
+            # (the page's f32 orientations move a corner by ~5e-8 m; the depths of ~1e-4 m that
+            # weigh several corners then move their centre by up to ~1e-4 m)
+            tol = 1e-6 if len(depths) == 1 else 5e-4
+            assert np.allclose(arrow["base"], expected, atol=tol), (data[k, 0], arrow["base"], expected)
+            checked[min(len(depths), 2)] += 1
+    assert checked[1] >= 3 and checked[2] >= 3, f"frames on one corner and on several: {checked}"
+
+
+def test_fmu_documentation_scene_ground(chromium, triad, tmp_path):
+    """The bouncing ball FMU's documentation/scene.html: the ball in the air over its ground."""
+    import zipfile
+
+    fmu = tmp_path / "ball.fmu"
+    run(triad, "build", str(ROOT / BALL), "-o", str(fmu), cwd=tmp_path)
+    with zipfile.ZipFile(fmu) as z:
+        z.extract("documentation/scene.html", tmp_path)
+    SHOTS.mkdir(parents=True, exist_ok=True)
+    with Browser(chromium, *SIZE) as b:
+        b.open(tmp_path / "documentation" / "scene.html", "ui=0")
+        b.wait_for("window.triad && window.triad.ready", timeout=60)
+        assert b.evaluate("window.triad.frames") == 1
+        check_ground(b, "ball_fmu_scene")
 
 
 if __name__ == "__main__":

@@ -128,7 +128,7 @@ impl Model {
         }
         model.reduced = covers(&model);
         // contact's Jacobian leaves out the coupling of two bodies through a feature
-        model.exact_reduced = exact_jacobian(&model) && model.contact.is_empty();
+        model.exact_reduced = exact_jacobian(&model) && model.contact.features.is_empty();
         Ok(model)
     }
 }
