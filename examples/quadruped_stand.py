@@ -38,7 +38,7 @@ FEET = ("FR_foot", "FL_foot", "RR_foot", "RL_foot")
 DROP = 0.1  # m: the lowest foot's clearance at the start
 KP, KD = 60.0, 3.0  # N.m/rad, N.m.s/rad
 H = 1e-3  # communication step = control period, s
-MAX_STEP = 5e-4  # internal step: resolves the calves' contact period (8.8 ms; `triad check`)
+MAX_STEP = 1e-3  # internal step: ≤ √(m/k) = 1.4 ms of the lightest body with a shape (a calf; `triad check`)
 STOP = 5.0  # s
 
 

@@ -6,7 +6,7 @@ FMU and controller).
 - at rest (the last 0.5 s of 5 s) the vertical forces of the four feet sum to the weight within
   1 %, and no other collision shape (calves, thighs, hips, trunk) carries any force;
 - `system.energy - system.work` stays constant through the drop, the impact and the stand, to
-  1e-13 of the largest |energy| (measured: 2.7e-15);
+  1e-13 of the largest |energy| (measured: 4.5e-15);
 - MuJoCo (PyPI) on the same model, built from the same spec (masses, inertias, joint frames,
   damping, foot spheres, μ; the contact law mapped as quadruped_mujoco.py explains) under the
   same controller at the same rate: the settled base height agrees within 5 mm. The peak foot
