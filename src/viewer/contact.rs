@@ -262,6 +262,7 @@ pub fn force_scale(spec: &Spec, recording: &Recording, length: f64) -> ForceScal
 
 #[cfg(test)]
 mod tests {
+    use super::super::recording::{BodyTrack, ContactTrack};
     use super::*;
 
     #[test]
@@ -317,12 +318,12 @@ mod tests {
             .fold(f64::INFINITY, f64::min);
         let recording = Recording {
             time: vec![0.0],
-            bodies: vec![super::super::BodyTrack {
+            bodies: vec![BodyTrack {
                 name: "b".into(),
                 r: vec![r],
                 rot: vec![rot],
             }],
-            contacts: vec![super::super::ContactTrack {
+            contacts: vec![ContactTrack {
                 name: "b_1".into(),
                 shape: 0,
                 f: vec![Vec3::zeros()],
@@ -349,7 +350,7 @@ mod tests {
     fn the_scale_from_the_weight_or_the_largest_force() {
         let spec = tilted_box(0.0, "[0.0, 0.0, -9.81]");
         let mut recording = Recording {
-            contacts: vec![super::super::ContactTrack {
+            contacts: vec![ContactTrack {
                 name: "b_1".into(),
                 shape: 0,
                 f: vec![Vec3::new(0.0, 0.0, 300.0), Vec3::repeat(f64::NAN)],
