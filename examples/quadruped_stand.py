@@ -120,7 +120,9 @@ def weight(spec):
 def run_fmu(fmu_path, spec, stop=STOP, h=H, every=10, start_values=None):
     """Runs the FMU under the PD loop. Returns a dict: `t`, `z` (base height), `feet` (vertical
     forces, one column per foot in FEET), `energy`, `work`, `others` (the largest |force| on any
-    other shape), `wall` (s) and `replay`: (names, rows) every `every` steps for `triad animate`."""
+    other shape), `wall` (s) and `replay`: (names, rows) every `every` steps for `triad animate`
+    (poses, joint angles, energy, work, and the contact forces and gaps: the page draws the
+    ground where the gaps put it and the forces as arrows)."""
     from fmpy import extract, read_model_description
     from fmpy.fmi2 import FMU2Slave
 
@@ -135,7 +137,7 @@ def run_fmu(fmu_path, spec, stop=STOP, h=H, every=10, start_values=None):
     others = [v for n, v in vr.items() if n.startswith("contact.") and ".f[" in n
               and n.split(".")[1] not in FEET]
     record = [vr[f"body.{base}.r[3]"], vr["system.energy"], vr["system.work"]] + feet + others
-    replay = [n for n in vr if (n.startswith("body.") and (".r[" in n or ".R[" in n))
+    replay = [n for n in vr if (n.startswith("body.") and (".r[" in n or ".R[" in n)) or n.startswith("contact.")
               or (n.startswith("joint.") and n.endswith(".q")) or n in ("system.energy", "system.work")]
     replay_vr = [vr[n] for n in replay]
     unzipped = extract(str(fmu_path))
