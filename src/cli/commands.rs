@@ -34,7 +34,12 @@ pub fn check(model: &str, urdf: &ImportArgs) -> Result<(), CliError> {
         plural(count(Causality::Parameter), "parameter", "parameters")
     );
     for note in import_notes.iter().chain(built.notes()) {
-        println!("note: {note}");
+        // a note that is a warning says so itself
+        if note.starts_with("warning:") {
+            println!("{note}");
+        } else {
+            println!("note: {note}");
+        }
     }
     Ok(())
 }
