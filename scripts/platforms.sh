@@ -5,7 +5,7 @@
 #     bash scripts/platforms.sh                    # all runtimes into target/runtime/<platform>/
 #     bash scripts/platforms.sh --only win64,linux64
 #     bash scripts/platforms.sh --dist             # and dist/triad-<version>/ (CLI + runtime/)
-#     TRIAD_DIST_EXE=1 bash scripts/platforms.sh --dist   # also triad.exe (untested, see README)
+#     TRIAD_DIST_EXE=0 bash scripts/platforms.sh --dist   # the distribution without triad.exe
 #
 # Platforms and their files (the layout `triad build` reads, README "Platforms"):
 #   linux64/libtriad.so        x86_64 Linux, glibc >= 2.17   cargo-zigbuild, rustup's toolchain
@@ -136,13 +136,13 @@ if [ "$DIST" = 1 ]; then
   version=$(sed -n 's/^version = "\(.*\)"/\1/p' Cargo.toml | head -1)
   dist=$ROOT/dist/triad-$version
   rm -rf "$dist" && mkdir -p "$dist"
-  # the CLI for x86_64 Linux at glibc 2.17; fontconfig (plots) is opened at run time if present
-  run_logged dist-cli env PATH="$ZIGPATH" RUST_FONTCONFIG_DLOPEN=on cargo-zigbuild zigbuild \
+  # the CLI for x86_64 Linux at glibc 2.17 (the plots' font is embedded: no fontconfig needed)
+  run_logged dist-cli env PATH="$ZIGPATH" cargo-zigbuild zigbuild \
     --release --locked --bin triad --target x86_64-unknown-linux-gnu.2.17
   install -m 755 target/x86_64-unknown-linux-gnu/release/triad "$dist/triad"
-  # triad.exe (the CLI for Windows, with the tools feature) is opt-in: TRIAD_DIST_EXE=1. It is
-  # not built by default and not tested in CI (README "Platforms": why).
-  if [ "${TRIAD_DIST_EXE:-0}" = 1 ]; then
+  # triad.exe, the CLI for Windows (Debian's rustc + build-std, as the win64 runtime; its own
+  # standard library build in target/x86_64-pc-windows-gnu/release); TRIAD_DIST_EXE=0 skips it
+  if [ "${TRIAD_DIST_EXE:-1}" = 1 ]; then
     run_logged dist-exe debian_env CARGO_TARGET_X86_64_PC_WINDOWS_GNU_LINKER=x86_64-w64-mingw32-gcc \
       cargo build --release --locked --bin triad "${BUILD_STD[@]}" --target x86_64-pc-windows-gnu
     install -m 755 target/x86_64-pc-windows-gnu/release/triad.exe "$dist/triad.exe"

@@ -1,7 +1,7 @@
 #!/usr/bin/env bash
-# Installs what triad needs on a fresh Debian machine: system libraries for the plotting
-# (fontconfig + a font), the Rust build, and the Python venv (.venv) used by the FMU tests,
-# the examples and the main job. Idempotent: steps already done are skipped.
+# Installs what triad needs on a fresh Debian machine: the Python venv (.venv) used by the FMU
+# tests, the examples and the main job (the Rust build needs no system library: the plots' font
+# is embedded). Idempotent: steps already done are skipped.
 #
 #     bash scripts/setup.sh            # the above
 #     bash scripts/setup.sh --browser  # and Debian's chromium, for the 3-D replay's browser test
@@ -14,7 +14,7 @@ if [ ! -c /dev/null ] && [ "$(id -u)" = 0 ]; then
   rm -f /dev/null && mknod -m 666 /dev/null c 1 3
 fi
 
-packages=(libfontconfig1-dev fonts-dejavu-core pkg-config)
+packages=()
 if [ "${1:-}" = "--browser" ]; then
   packages+=(chromium)
 fi

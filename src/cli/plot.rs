@@ -1,6 +1,7 @@
 //! `--plot OUT.png`: joint coordinates (top panel) and energy and work (bottom panel) over time.
 
 use std::path::Path;
+use std::sync::OnceLock;
 
 use plotters::prelude::*;
 
@@ -75,8 +76,21 @@ fn panel(
     Ok(())
 }
 
+/// Registers the embedded DejaVu Sans as the plots' "sans-serif" font, once per process: plots
+/// need no fontconfig or installed font, on any platform.
+fn register_font() -> Result<(), String> {
+    static REGISTERED: OnceLock<Result<(), String>> = OnceLock::new();
+    REGISTERED
+        .get_or_init(|| {
+            plotters::style::register_font("sans-serif", FontStyle::Normal, dejavu::sans::regular())
+                .map_err(|_| "the embedded DejaVu Sans font is not a valid font".to_string())
+        })
+        .clone()
+}
+
 /// Draws the two panels into a PNG at `path`.
 pub fn draw(path: &Path, model: &str, series: &[Series]) -> Result<(), Box<dyn std::error::Error>> {
+    register_font()?;
     let root = BitMapBackend::new(path, (1100, 800)).into_drawing_area();
     root.fill(&WHITE)?;
     let (top, bottom) = root.split_vertically(400);
