@@ -13,12 +13,17 @@
 //! The URDF is found in the venv's example-robot-data (`bash scripts/setup.sh`), or at
 //! `$TRIAD_GO1_URDF`; without it the bench says so and does nothing.
 //!
+//! A second group, `plate`, shows that ground contact costs O(number of shapes): one free plate
+//! (1 kg) resting on n = 4, 16, 64, 256 small spheres on a square grid, against the same plate
+//! without a ground (falling). The cost per shape is (step with n − step without) / n; the
+//! Newton iterations per step are printed, as the number of iterations can differ with n.
+//!
 //! Run: `cargo bench --bench contact -- --warm-up-time 1 --measurement-time 5`.
 use criterion::{criterion_group, criterion_main, BenchmarkId, Criterion};
 use std::path::{Path, PathBuf};
 use std::time::{Duration, Instant};
 use triad::mechanics::{step_state, InputSlot, Model, State};
-use triad::spec::{Coords, InitialSpec, Spec};
+use triad::spec::{Coords, Format, InitialSpec, Spec};
 use triad::urdf::{import, Base, ImportOptions};
 
 /// Step size, s.
@@ -154,5 +159,76 @@ fn bench(c: &mut Criterion) {
     g.finish();
 }
 
-criterion_group!(benches, bench);
+/// A 1 kg plate of 0.4 m × 0.4 m resting on an n × n grid of spheres of radius 0.01 m (the
+/// ground with stiffness 1e5 · 16 / n² N/m per sphere, so the plate sinks alike for every n), or
+/// without a ground.
+fn plate(n: usize, ground: bool) -> Spec {
+    let k = 1e5 * 16.0 / (n * n) as f64;
+    // the static sink under 9.81 N, so the plate starts near rest
+    let sink = 9.81 / (k * (n * n) as f64);
+    let mut text = format!(
+        "name = \"Plate\"\ngravity = [0.0, 0.0, -9.81]\n[solver]\nmax_step = {H}\n\
+         [[body]]\nname = \"plate\"\nmass = 1.0\ninertia = [0.0134, 0.0134, 0.0267]\n\
+         position = [0.0, 0.0, {}]\n",
+        0.01 - sink
+    );
+    if ground {
+        text += &format!("[ground]\nstiffness = {k}\ndamping = 1.0\nfriction = 0.5\n");
+    }
+    for i in 0..n {
+        for j in 0..n {
+            let x = -0.2 + 0.4 * (i as f64 + 0.5) / n as f64;
+            let y = -0.2 + 0.4 * (j as f64 + 0.5) / n as f64;
+            text += &format!(
+                "[[collision]]\nbody = \"plate\"\nsphere = {{ radius = 0.01 }}\n\
+                 origin = {{ xyz = [{x}, {y}, 0.0] }}\n"
+            );
+        }
+    }
+    Spec::from_str(&text, Format::Toml, "plate.toml").expect("plate spec")
+}
+
+fn bench_plate(c: &mut Criterion) {
+    let mut g = c.benchmark_group("plate");
+    for n in [0_usize, 2, 4, 8, 16] {
+        let shapes = n * n;
+        let sp = if n == 0 {
+            plate(2, false)
+        } else {
+            plate(n, true)
+        };
+        let (m, s0) = build(&sp);
+        let mut s = s0.clone();
+        let (mut k, mut steps, mut iters) = (0_u64, 0_u64, 0_usize);
+        let name = if n == 0 {
+            "no_ground".to_string()
+        } else {
+            format!("{shapes}_spheres")
+        };
+        g.bench_with_input(BenchmarkId::new("step", &name), &name, |b, _| {
+            b.iter_custom(|count| {
+                let mut elapsed = Duration::ZERO;
+                for _ in 0..count {
+                    if k == WINDOW {
+                        s.clone_from(&s0);
+                        k = 0;
+                    }
+                    let t = Instant::now();
+                    iters += step_state(&m, &mut s, H).expect("step").iterations;
+                    elapsed += t.elapsed();
+                    k += 1;
+                }
+                steps += count;
+                elapsed
+            });
+        });
+        eprintln!(
+            "plate/{name}: {:.2} Newton iterations per step over {steps} steps",
+            iters as f64 / steps.max(1) as f64
+        );
+    }
+    g.finish();
+}
+
+criterion_group!(benches, bench, bench_plate);
 criterion_main!(benches);
