@@ -6,7 +6,8 @@
 //! ```text
 //! two free spheres (no gravity), head-on and oblique, with friction:  Δp, ΔL ≤ 1e-13, E − W ≤ 1e-12
 //! capsules, a sphere on a box, two boxes:                               the same balances
-//! box on a ramp at tan θ = ½μ:                                          no creep over 10 s
+//! box on a ramp at tan θ = 0.5, 0.7, 0.89 μ:                          no creep over 10 s
+//! box on a ramp at tan θ = 0.95, 0.99 μ:                               creep within README's bound
 //! box on a ramp at tan θ = 1.5μ:                                         a = g (sin θ − μ cos θ)
 //! ```
 
@@ -69,6 +70,7 @@ fn colliding_spheres_keep_momentum_and_energy_exact() {
         ("oblique, damped, frictional", 0.25, 0.6, 1.0),
     ] {
         let (dp, dl, de, touched) = collide(&pair(SPHERE_A, SPHERE_B, offset, mu, d));
+        eprintln!("{what}: Δp {dp:.1e}, ΔL {dl:.1e}, E − W {de:.1e} (relative)");
         assert!(touched, "{what}: no contact");
         assert!(dp <= 1e-13 && dl <= 1e-13, "{what}: Δp {dp:e}, ΔL {dl:e}");
         assert!(de <= 1e-12, "{what}: E − W {de:e}");
@@ -89,6 +91,7 @@ fn capsules_spheres_and_boxes_keep_momentum_and_energy_exact() {
         ("box–box", box_a, box_b, 0.05),
     ] {
         let (dp, dl, de, touched) = collide(&pair(a, b, offset, 0.5, 0.5));
+        eprintln!("{what}: Δp {dp:.1e}, ΔL {dl:.1e}, E − W {de:.1e} (relative)");
         assert!(touched, "{what}: no contact");
         assert!(dp <= 1e-13 && dl <= 1e-13, "{what}: Δp {dp:e}, ΔL {dl:e}");
         assert!(de <= 1e-12, "{what}: E − W {de:e}");
@@ -128,18 +131,38 @@ fn along(s: &State, theta: f64) -> f64 {
 #[test]
 fn a_box_holds_on_a_ramp_below_the_friction_angle() {
     let mu: f64 = 0.6;
-    let theta = (0.5 * mu).atan();
-    let (m, mut s) = model(&ramp(theta, mu));
-    // settle (the contact takes up the weight), then watch 10 s
-    for _ in 0..500 {
-        step(&m, &mut s, 1e-3).unwrap();
+    // Up to 0.9 of the cone the bristle sticks (README "Contact"): once the contact has taken
+    // up the load (1.5 s), nothing moves by more than 0.1 µm in 10 s. Between 0.9 μ and μ the bristle's anchor slides
+    // slowly: the creep rate is bounded by what README documents (measured 5.1e-4 m/s at
+    // 0.95 μ and 3.8e-3 m/s at 0.99 μ).
+    for (ratio, bound) in [
+        (0.5, 0.0),
+        (0.7, 0.0),
+        (0.89, 0.0),
+        (0.95, 1e-3),
+        (0.99, 5e-3),
+    ] {
+        let theta = (ratio * mu).atan();
+        let (m, mut s) = model(&ramp(theta, mu));
+        for _ in 0..1500 {
+            step(&m, &mut s, 1e-3).unwrap();
+        }
+        let x0 = along(&s, theta);
+        for _ in 0..10_000 {
+            step(&m, &mut s, 1e-3).unwrap();
+        }
+        let rate = (along(&s, theta) - x0).abs() / 10.0;
+        eprintln!("tan θ = {ratio} μ: creeps {rate:.2e} m/s over 10 s");
+        if bound == 0.0 {
+            // the bristles' ringing dies out over 1e-8 m; no slip
+            assert!(rate <= 1e-8, "tan θ = {ratio} μ: crept {rate:e} m/s");
+        } else {
+            assert!(
+                rate <= bound,
+                "tan θ = {ratio} μ: creeps {rate:e} m/s > {bound:e}"
+            );
+        }
     }
-    let x0 = along(&s, theta);
-    for _ in 0..10_000 {
-        step(&m, &mut s, 1e-3).unwrap();
-    }
-    let creep = (along(&s, theta) - x0).abs();
-    assert!(creep <= 1e-6, "crept {creep:e} m in 10 s");
 }
 
 #[test]
@@ -166,6 +189,10 @@ fn a_box_slides_down_a_ramp_above_the_friction_angle() {
     }
     let a = ata.lu().solve(&atb).unwrap()[2];
     let want = g * (theta.sin() - mu * theta.cos());
+    eprintln!(
+        "ramp above the friction angle: a = {a:.5}, g(sin θ − μ cos θ) = {want:.5} ({:+.2} %)",
+        100.0 * (a / want - 1.0)
+    );
     assert!(
         (a - want).abs() <= 0.01 * want,
         "a = {a}, g(sin θ − μ cos θ) = {want}"

@@ -76,6 +76,7 @@ fn an_elastic_ball_bounces_100_times_with_exact_energy() {
         worst = worst.max(drift(&s, e0));
         assert!(s.time() < 100.0, "only {bounces} bounces");
     }
+    eprintln!("100 bounces at h = 1e-3: |E − W − E₀| ≤ {worst:.1e} E₀");
     assert!(
         worst <= 1e-12,
         "E − W drift {worst:e} of E₀ over 100 bounces"
@@ -126,6 +127,11 @@ fn an_elastic_ball_under_error_control_lands_on_its_contacts() {
         h = s.control().proposal(&m).min(m.settings().max_step);
         assert!(steps < 2_000_000, "{bounces} bounces");
     }
+    eprintln!(
+        "100 bounces under error control ({steps} steps): |E − W − E₀| ≤ {worst:.1e} E₀, \
+         apex energy off by {:.1e}",
+        (s.outputs().energy - e0).abs() / e0
+    );
     assert!(worst <= 1e-12, "E − W drift {worst:e} under error control");
     // the apex after 100 bounces is still the drop height (error control resolves every impact)
     let o = s.outputs();
@@ -166,6 +172,10 @@ fn a_damped_impact_restitutes_as_hunt_and_crossley() {
         assert!(s.outputs().contacts[0].gap > 0.0, "still in contact");
         let e = v_out / v_in;
         let want = restitution(d * v_in);
+        eprintln!(
+            "v_in {v_in}, d {d}: e = {e:.5}, Hunt–Crossley {want:.5} ({:+.2} %)",
+            100.0 * (e / want - 1.0)
+        );
         assert!(
             (e - want).abs() <= 0.02 * want,
             "v_in {v_in}, d {d}: e = {e}, Hunt–Crossley {want}"
@@ -195,6 +205,13 @@ fn a_sliding_box_stops_where_coulomb_says_and_its_loss_is_the_work() {
     let o = s.outputs();
     let distance = o.bodies[0].r.x - x0;
     let want = v0 * v0 / (2.0 * mu * g);
+    let lost = e0 - o.energy;
+    eprintln!(
+        "sliding box: stops after {distance:.5} m, Coulomb {want:.5} m ({:+.2} %); \
+         ΔE + W = {:.1e} ΔE",
+        100.0 * (distance / want - 1.0),
+        (lost + o.work).abs() / lost
+    );
     assert!(
         (distance - want).abs() <= 0.01 * want,
         "stopped after {distance} m, Coulomb {want} m"
@@ -205,7 +222,6 @@ fn a_sliding_box_stops_where_coulomb_says_and_its_loss_is_the_work() {
         o.bodies[0].v.norm()
     );
     // what the contact dissipated is the whole loss of energy
-    let lost = e0 - o.energy;
     assert!(
         (lost + o.work).abs() <= 1e-10 * lost,
         "ΔE {lost} J, work {} J",
@@ -239,6 +255,11 @@ fn a_ball_thrown_sliding_rolls_at_five_sevenths() {
         }
     }
     let t = rolled_at.expect("the ball never rolled");
+    eprintln!(
+        "rolling ball: rolls from t = {t:.5} s (analytic {t_roll:.5} s) at {:.5} m/s (5/7 v₀ = {:.5})",
+        s.outputs().bodies[0].v.x,
+        5.0 / 7.0 * v0
+    );
     assert!(
         (t - t_roll).abs() <= 0.01 * t_roll,
         "rolls from t = {t} s, analytic {t_roll} s"
@@ -272,6 +293,7 @@ fn a_tumbling_box_keeps_its_energy_account_at_both_orders() {
             step(&m, &mut s, 1e-3).unwrap();
             worst = worst.max(drift(&s, e0));
         }
+        eprintln!("tumbling box, order {order}: |E − W − E₀| ≤ {worst:.1e} E₀");
         assert!(worst <= 1e-12, "order {order}: E − W drift {worst:e}");
     }
 }
