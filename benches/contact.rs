@@ -19,7 +19,8 @@
 //! Newton iterations per step are printed, as the number of iterations can differ with n.
 //!
 //! Run: `cargo bench --bench contact -- --warm-up-time 1 --measurement-time 5`.
-use criterion::{criterion_group, criterion_main, BenchmarkId, Criterion};
+use criterion::measurement::WallTime;
+use criterion::{criterion_group, criterion_main, BenchmarkGroup, BenchmarkId, Criterion};
 use std::path::{Path, PathBuf};
 use std::time::{Duration, Instant};
 use triad::mechanics::{step_state, InputSlot, Model, State};
@@ -121,6 +122,43 @@ fn control(m: &Model, s: &mut State, targets: &[f64]) {
     s.inputs_mut().copy_from_slice(&tau);
 }
 
+/// Benchmarks `step` of `name` in group `g`: runs of `WINDOW` steps of `H` from `s0` (the
+/// restore is not timed), `before` called before every step outside the timing; prints the
+/// mean Newton iterations per step.
+fn run(
+    g: &mut BenchmarkGroup<'_, WallTime>,
+    group: &str,
+    name: &str,
+    m: &Model,
+    s0: &State,
+    mut before: impl FnMut(&Model, &mut State),
+) {
+    let mut s = s0.clone();
+    let (mut k, mut steps, mut iters) = (0_u64, 0_u64, 0_usize);
+    g.bench_with_input(BenchmarkId::new("step", name), &name, |b, _| {
+        b.iter_custom(|n| {
+            let mut elapsed = Duration::ZERO;
+            for _ in 0..n {
+                if k == WINDOW {
+                    s.clone_from(s0);
+                    k = 0;
+                }
+                before(m, &mut s);
+                let t = Instant::now();
+                iters += step_state(m, &mut s, H).expect("step").iterations;
+                elapsed += t.elapsed();
+                k += 1;
+            }
+            steps += n;
+            elapsed
+        });
+    });
+    eprintln!(
+        "{group}/{name}: {:.2} Newton iterations per step over {steps} steps",
+        iters as f64 / steps.max(1) as f64
+    );
+}
+
 fn bench(c: &mut Criterion) {
     let Some(urdf) = go1() else {
         eprintln!("contact bench: no go1.urdf (bash scripts/setup.sh, or set TRIAD_GO1_URDF)");
@@ -131,30 +169,7 @@ fn bench(c: &mut Criterion) {
         let sp = spec(&urdf, contacts);
         let targets: Vec<f64> = sp.joint.iter().map(|j| target(&j.name)).collect();
         let (m, s0) = build(&sp);
-        let mut s = s0.clone();
-        let (mut k, mut steps, mut iters) = (0_u64, 0_u64, 0_usize);
-        g.bench_with_input(BenchmarkId::new("step", name), &name, |b, _| {
-            b.iter_custom(|n| {
-                let mut elapsed = Duration::ZERO;
-                for _ in 0..n {
-                    if k == WINDOW {
-                        s.clone_from(&s0);
-                        k = 0;
-                    }
-                    control(&m, &mut s, &targets);
-                    let t = Instant::now();
-                    iters += step_state(&m, &mut s, H).expect("step").iterations;
-                    elapsed += t.elapsed();
-                    k += 1;
-                }
-                steps += n;
-                elapsed
-            });
-        });
-        eprintln!(
-            "go1/{name}: {:.2} Newton iterations per step over {steps} steps",
-            iters as f64 / steps.max(1) as f64
-        );
+        run(&mut g, "go1", name, &m, &s0, |m, s| control(m, s, &targets));
     }
     g.finish();
 }
@@ -198,34 +213,12 @@ fn bench_plate(c: &mut Criterion) {
             plate(n, true)
         };
         let (m, s0) = build(&sp);
-        let mut s = s0.clone();
-        let (mut k, mut steps, mut iters) = (0_u64, 0_u64, 0_usize);
         let name = if n == 0 {
             "no_ground".to_string()
         } else {
             format!("{shapes}_spheres")
         };
-        g.bench_with_input(BenchmarkId::new("step", &name), &name, |b, _| {
-            b.iter_custom(|count| {
-                let mut elapsed = Duration::ZERO;
-                for _ in 0..count {
-                    if k == WINDOW {
-                        s.clone_from(&s0);
-                        k = 0;
-                    }
-                    let t = Instant::now();
-                    iters += step_state(&m, &mut s, H).expect("step").iterations;
-                    elapsed += t.elapsed();
-                    k += 1;
-                }
-                steps += count;
-                elapsed
-            });
-        });
-        eprintln!(
-            "plate/{name}: {:.2} Newton iterations per step over {steps} steps",
-            iters as f64 / steps.max(1) as f64
-        );
+        run(&mut g, "plate", &name, &m, &s0, |_, _| {});
     }
     g.finish();
 }
