@@ -1,6 +1,65 @@
 //! Embeds the shipped example specs (`modelDescription/*/spec.toml`) so the CLI and the tests
-//! iterate over exactly the shipped set, and records the FMI platform name.
+//! iterate over exactly the shipped set, records the FMI platform name, and the runtime id: a
+//! hash of the sources the FMU runtime compiles, so `triad build` can tell a runtime binary
+//! built from other sources (`src/platforms.rs`).
 use std::{env, fs, path::Path};
+
+/// The sources of the FMU runtime (`--no-default-features`): everything but the tools modules.
+const RUNTIME_SOURCES: &[&str] = &[
+    "src/lib.rs",
+    "src/math.rs",
+    "src/sim.rs",
+    "src/variables.rs",
+    "src/ffi",
+    "src/fmu",
+    "src/mechanics",
+    "src/spec",
+    "src/variables",
+];
+
+/// The files below `path` (or `path` itself), sorted.
+fn files(path: &Path, out: &mut Vec<std::path::PathBuf>) {
+    if path.is_dir() {
+        let mut entries: Vec<_> = fs::read_dir(path)
+            .map(|r| r.flatten().map(|e| e.path()).collect())
+            .unwrap_or_default();
+        entries.sort();
+        for e in entries {
+            files(&e, out);
+        }
+    } else if path.is_file() {
+        out.push(path.to_path_buf());
+    }
+}
+
+/// 64-bit FNV-1a of the runtime's sources (relative paths and contents, `\r` dropped so a
+/// Windows checkout hashes alike), as 16 hex digits.
+fn runtime_id(root: &Path) -> String {
+    let mut h: u64 = 0xcbf2_9ce4_8422_2325;
+    let mut eat = |bytes: &[u8]| {
+        for &b in bytes.iter().filter(|&&b| b != b'\r') {
+            h ^= u64::from(b);
+            h = h.wrapping_mul(0x0100_0000_01b3);
+        }
+    };
+    for source in RUNTIME_SOURCES {
+        println!("cargo:rerun-if-changed={source}");
+        let mut list = Vec::new();
+        files(&root.join(source), &mut list);
+        for f in list {
+            let rel = f
+                .strip_prefix(root)
+                .unwrap_or(&f)
+                .to_string_lossy()
+                .replace('\\', "/");
+            eat(rel.as_bytes());
+            eat(&[0]);
+            eat(&fs::read(&f).unwrap_or_default());
+            eat(&[0]);
+        }
+    }
+    format!("{h:016x}")
+}
 
 fn main() {
     println!("cargo:rerun-if-changed=modelDescription");
@@ -36,4 +95,8 @@ fn main() {
         _ => "linux64",
     };
     println!("cargo:rustc-env=TRIAD_FMI_PLATFORM={platform}");
+    println!(
+        "cargo:rustc-env=TRIAD_RUNTIME_ID={}",
+        runtime_id(Path::new(&root))
+    );
 }

@@ -16,6 +16,12 @@
 //! `../runtime/` (so `target/release/triad` finds `target/runtime/`). The host's binary is
 //! always packed: `$TRIAD_CDYLIB` if set, else the runtime directory's, else the library of
 //! this build ([`find_cdylib`]).
+//!
+//! Every runtime binary carries the runtime id of the sources it was built from
+//! ([`crate::fmu::RUNTIME_TAG`]). A binary of the runtime directory with another id (built
+//! before the sources changed) is not packed: the host's is replaced by this build's library
+//! when that one matches; another platform is left out with a warning, or, asked for by name
+//! or `all`, is an error naming the command that rebuilds it.
 
 use std::path::{Path, PathBuf};
 
@@ -268,6 +274,35 @@ pub fn label(platform: Option<Platform>, folder: &str) -> String {
     )
 }
 
+/// The runtime id in a runtime binary's bytes (the 16 hex digits after `triad-runtime-id:`),
+/// `None` when it carries none (built before runtime ids, or not a triad runtime).
+#[must_use]
+pub fn runtime_id(bytes: &[u8]) -> Option<&str> {
+    const KEY: &[u8] = b"triad-runtime-id:";
+    let at = bytes.windows(KEY.len()).position(|w| w == KEY)? + KEY.len();
+    let id = bytes.get(at..at + 16)?;
+    id.iter()
+        .all(u8::is_ascii_hexdigit)
+        .then(|| std::str::from_utf8(id).ok())
+        .flatten()
+}
+
+/// Why `path` (its bytes `bytes`) is not this triad's runtime, or `None` when it is.
+fn stale(path: &Path, bytes: &[u8]) -> Option<String> {
+    let own = crate::fmu::RUNTIME_ID;
+    match runtime_id(bytes) {
+        Some(id) if id == own => None,
+        Some(id) => Some(format!(
+            "{} was built from other sources than this triad (runtime id {id}, this triad's {own})",
+            path.display()
+        )),
+        None => Some(format!(
+            "{} carries no runtime id (built by an older triad; this triad's is {own})",
+            path.display()
+        )),
+    }
+}
+
 fn read(
     platform: Option<Platform>,
     folder: &str,
@@ -347,12 +382,31 @@ pub fn collect(
             .zip(dir)
             .map(|(h, d)| d.join(h.runtime()).join(h.file().0))
             .filter(|p| p.is_file());
-        let path = match (std::env::var_os("TRIAD_CDYLIB"), in_dir) {
-            (None, Some(p)) => p,
-            _ => find_cdylib()?,
-        };
         let ext = host.map_or(cdylib_names().1, |h| h.file().1);
-        out.push(read(host, host_folder, ext, &path)?);
+        let mut binary = match (std::env::var_os("TRIAD_CDYLIB"), in_dir) {
+            (None, Some(p)) => read(host, host_folder, ext, &p)?,
+            _ => read(host, host_folder, ext, &find_cdylib()?)?,
+        };
+        if let Some(why) = stale(&binary.source, &binary.bytes) {
+            // the runtime directory's is out of date: this build's library, if it is current
+            let own = find_cdylib()
+                .ok()
+                .filter(|p| *p != binary.source)
+                .and_then(|p| read(host, host_folder, ext, &p).ok())
+                .filter(|b| stale(&b.source, &b.bytes).is_none());
+            if let Some(own) = own {
+                notes.push(format!(
+                    "{why}: packed this build's library {} instead; `bash scripts/platforms.sh` rebuilds the runtimes",
+                    own.source.display()
+                ));
+                binary = own;
+            } else {
+                notes.push(format!(
+                    "warning: {why}; the FMU may not run (`bash scripts/platforms.sh` or `cargo build --release` rebuilds it)"
+                ));
+            }
+        }
+        out.push(binary);
     }
     for p in asked {
         if Some(p) == host && !replaced {
@@ -370,7 +424,19 @@ pub fn collect(
             .map(|d| d.join(p.runtime()).join(p.file().0))
             .filter(|f| f.is_file())
             .ok_or_else(|| missing(p, dir))?;
-        out.push(read(Some(p), p.folder(), p.file().1, &path)?);
+        let binary = read(Some(p), p.folder(), p.file().1, &path)?;
+        if let Some(why) = stale(&binary.source, &binary.bytes) {
+            let fix = format!(
+                "rebuild it with `bash scripts/platforms.sh --only {}`",
+                p.runtime()
+            );
+            if matches!(selection, Selection::Found) {
+                notes.push(format!("warning: {} is not packed: {why}; {fix}", p.name()));
+                continue;
+            }
+            return Err(format!("platform {}: {why}; {fix}", p.name()));
+        }
+        out.push(binary);
     }
     out.sort_by(|a, b| a.folder.cmp(&b.folder));
     Ok((out, notes))
@@ -404,10 +470,11 @@ mod tests {
     #[test]
     fn found_asked_and_missing() {
         let dir = tempfile_dir();
+        let tagged = |head: &str| format!("{head}..{}..", crate::fmu::RUNTIME_TAG).into_bytes();
         std::fs::create_dir_all(dir.join("win64")).unwrap();
-        std::fs::write(dir.join("win64/triad.dll"), b"MZ").unwrap();
+        std::fs::write(dir.join("win64/triad.dll"), tagged("MZ")).unwrap();
         std::fs::create_dir_all(dir.join("aarch64-linux")).unwrap();
-        std::fs::write(dir.join("aarch64-linux/libtriad.so"), b"ELF").unwrap();
+        std::fs::write(dir.join("aarch64-linux/libtriad.so"), tagged("ELF")).unwrap();
         let host = Platform::host().unwrap();
         // found: the host and what the directory holds
         let (found, _) = collect(&Selection::Found, Some(&dir)).unwrap();
@@ -441,14 +508,51 @@ mod tests {
                 collect(&Selection::List(vec![Platform::Linux64Aarch64]), Some(&dir)).unwrap();
             assert_eq!(arm.len(), 1);
             assert_eq!(arm[0].folder, "linux64");
-            assert_eq!(arm[0].bytes, b"ELF");
+            assert_eq!(arm[0].bytes, tagged("ELF"));
             assert!(notes[0].contains("host's binary is not packed"));
         }
         // host only
         let (h, _) = collect(&Selection::Host, Some(&dir)).unwrap();
         assert_eq!(h.len(), 1);
         assert_eq!(h[0].folder, host.folder());
+        // a runtime built from other sources: left out with a warning, or an error when asked for
+        if host != Platform::Win64 {
+            let other = b"MZ..triad-runtime-id:0123456789abcdef..";
+            std::fs::write(dir.join("win64/triad.dll"), other).unwrap();
+            let (found, notes) = collect(&Selection::Found, Some(&dir)).unwrap();
+            assert!(found.iter().all(|b| b.folder != "win64"));
+            let note = notes.iter().find(|n| n.contains("win64")).unwrap();
+            assert!(
+                note.starts_with("warning: win64 is not packed")
+                    && note.contains("runtime id 0123456789abcdef")
+                    && note.contains("--only win64"),
+                "{note}"
+            );
+            let e = collect(&Selection::List(vec![Platform::Win64]), Some(&dir)).unwrap_err();
+            assert!(
+                e.contains("other sources") && e.contains("--only win64"),
+                "{e}"
+            );
+            std::fs::write(dir.join("win64/triad.dll"), b"MZ").unwrap();
+            let e = collect(&Selection::All, Some(&dir)).unwrap_err();
+            assert!(e.contains("no runtime id") || e.contains("missing"), "{e}");
+        }
         std::fs::remove_dir_all(&dir).unwrap();
+    }
+
+    #[test]
+    fn runtime_ids_are_read_from_the_bytes() {
+        assert_eq!(
+            runtime_id(b"\0\0triad-runtime-id:00ff00ff00ff00ff\0"),
+            Some("00ff00ff00ff00ff")
+        );
+        assert_eq!(runtime_id(b"triad-runtime-id:00ff"), None);
+        assert_eq!(runtime_id(b"triad-runtime-id:zzzzzzzzzzzzzzzz"), None);
+        assert_eq!(runtime_id(b"no id"), None);
+        assert_eq!(
+            runtime_id(crate::fmu::RUNTIME_TAG.as_bytes()),
+            Some(crate::fmu::RUNTIME_ID)
+        );
     }
 
     fn tempfile_dir() -> PathBuf {

@@ -156,7 +156,11 @@ pub fn build(
         );
     }
     for note in &built.notes {
-        println!("note: {note}");
+        if note.starts_with("warning:") {
+            println!("{note}");
+        } else {
+            println!("note: {note}");
+        }
     }
     println!("wrote {}", built.path.display());
     Ok(())

@@ -68,11 +68,15 @@ impl Instance {
         match spec {
             Ok(spec) => Self::from_spec(name, guid, spec, logging_on, sink),
             Err(msg) => {
+                // the runtime's id: an FMU packed with another triad's binary says so here
                 sink.log(
                     name,
                     Status::Error,
                     Category::LogStatusError,
-                    &format!("fmi2Instantiate: {msg}"),
+                    &format!(
+                        "fmi2Instantiate: {msg} (this binary: {})",
+                        super::RUNTIME_TAG
+                    ),
                 );
                 None
             }

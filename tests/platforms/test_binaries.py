@@ -127,3 +127,23 @@ def test_the_signature_check_can_fail(tmp_path):
     p.write_bytes(bytes(bad))
     sig = macho.read(p)["slices"][0]["signature"]
     assert not sig["ok"] and "page hashes differ" in sig["why"], sig
+
+
+RUNTIME_ID = re.compile(rb"triad-runtime-id:([0-9a-f]{16})")
+
+
+def test_every_runtime_carries_the_runtime_id_of_these_sources():
+    """`triad build` packs only runtimes built from its own sources (src/platforms.rs): each
+    binary carries `triad-runtime-id:` and 16 hex digits, the same in all of them and in the host
+    build of the same tree (darwin64: in both slices)."""
+    ids = {}
+    for platform, file in [("linux64", "libtriad.so"), ("win64", "triad.dll"),
+                           ("darwin64", "libtriad.dylib"), ("aarch64-linux", "libtriad.so")]:
+        found = set(RUNTIME_ID.findall(required(platform, file).read_bytes()))
+        assert len(found) == 1, f"{platform}: runtime ids {found}"
+        ids[platform] = found.pop()
+    assert len(RUNTIME_ID.findall((RUNTIME / "darwin64" / "libtriad.dylib").read_bytes())) >= 2
+    host = ROOT / "target" / "release" / "libtriad.so"
+    if host.is_file():
+        ids["host build"] = RUNTIME_ID.findall(host.read_bytes())[0]
+    assert len(set(ids.values())) == 1, ids
