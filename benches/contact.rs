@@ -153,10 +153,12 @@ fn run(
             elapsed
         });
     });
-    eprintln!(
-        "{group}/{name}: {:.2} Newton iterations per step over {steps} steps",
-        iters as f64 / steps.max(1) as f64
-    );
+    if steps > 0 {
+        eprintln!(
+            "{group}/{name}: {:.2} Newton iterations per step over {steps} steps",
+            iters as f64 / steps as f64
+        );
+    }
 }
 
 fn bench(c: &mut Criterion) {
