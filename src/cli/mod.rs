@@ -65,7 +65,10 @@ pub enum Command {
     /// darwin64/libtriad.dylib (macOS x86_64 >= 10.12 + arm64 >= 11.0) and
     /// aarch64-linux/libtriad.so (glibc >= 2.17). `bash scripts/platforms.sh` builds them. The
     /// host's binary is always packed ($TRIAD_CDYLIB, else the runtime directory's, else the
-    /// library of this build). The command prints what it packed.
+    /// library of this build). Only binaries built from this triad's sources are packed (each
+    /// carries their runtime id): an out-of-date one is left out with a warning, or is an error
+    /// when asked for (the host's is replaced by this build's library). The command prints what
+    /// it packed.
     Build {
         /// Model spec (.toml or .json) or robot description (.urdf).
         model: PathBuf,
