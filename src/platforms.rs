@@ -18,7 +18,7 @@
 //! this build ([`find_cdylib`]).
 //!
 //! Every runtime binary carries the runtime id of the sources it was built from
-//! ([`crate::fmu::RUNTIME_TAG`]). A binary of the runtime directory with another id (built
+//! ([`crate::fmu::runtime_id::RUNTIME_TAG`]). A binary of the runtime directory with another id (built
 //! before the sources changed) is not packed: the host's is replaced by this build's library
 //! when that one matches; another platform is left out with a warning, or, asked for by name
 //! or `all`, is an error naming the command that rebuilds it.
@@ -289,7 +289,7 @@ pub fn runtime_id(bytes: &[u8]) -> Option<&str> {
 
 /// Why `path` (its bytes `bytes`) is not this triad's runtime, or `None` when it is.
 fn stale(path: &Path, bytes: &[u8]) -> Option<String> {
-    let own = crate::fmu::RUNTIME_ID;
+    let own = crate::fmu::runtime_id::RUNTIME_ID;
     match runtime_id(bytes) {
         Some(id) if id == own => None,
         Some(id) => Some(format!(
@@ -470,7 +470,8 @@ mod tests {
     #[test]
     fn found_asked_and_missing() {
         let dir = tempfile_dir();
-        let tagged = |head: &str| format!("{head}..{}..", crate::fmu::RUNTIME_TAG).into_bytes();
+        let tagged =
+            |head: &str| format!("{head}..{}..", crate::fmu::runtime_id::RUNTIME_TAG).into_bytes();
         std::fs::create_dir_all(dir.join("win64")).unwrap();
         std::fs::write(dir.join("win64/triad.dll"), tagged("MZ")).unwrap();
         std::fs::create_dir_all(dir.join("aarch64-linux")).unwrap();
@@ -550,8 +551,8 @@ mod tests {
         assert_eq!(runtime_id(b"triad-runtime-id:zzzzzzzzzzzzzzzz"), None);
         assert_eq!(runtime_id(b"no id"), None);
         assert_eq!(
-            runtime_id(crate::fmu::RUNTIME_TAG.as_bytes()),
-            Some(crate::fmu::RUNTIME_ID)
+            runtime_id(crate::fmu::runtime_id::RUNTIME_TAG.as_bytes()),
+            Some(crate::fmu::runtime_id::RUNTIME_ID)
         );
     }
 

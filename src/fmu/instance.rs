@@ -75,7 +75,7 @@ impl Instance {
                     Category::LogStatusError,
                     &format!(
                         "fmi2Instantiate: {msg} (this binary: {})",
-                        super::RUNTIME_TAG
+                        super::runtime_id::RUNTIME_TAG
                     ),
                 );
                 None

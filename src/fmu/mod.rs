@@ -26,19 +26,13 @@ pub mod log;
 pub mod mode;
 mod params;
 pub mod resource;
+pub mod runtime_id;
 pub mod snapshot;
 pub mod status;
 
 pub use capabilities::{Capabilities, CAPABILITIES};
 pub use instance::{allowed, Instance, Mode, Op};
 pub use log::{Category, LogSink};
+pub use runtime_id::{RUNTIME_ID, RUNTIME_TAG};
 pub use snapshot::Snapshot;
 pub use status::{FmuError, Status};
-
-/// The runtime id: 16 hex digits hashing the sources this runtime compiles (`build.rs`), the
-/// same for the CLI and every platform's runtime built from one tree.
-pub const RUNTIME_ID: &str = env!("TRIAD_RUNTIME_ID");
-
-/// The runtime id as it stands in every runtime binary (in the message of an FMU whose model
-/// cannot be read), where `triad build` looks for it: `triad-runtime-id:` and [`RUNTIME_ID`].
-pub const RUNTIME_TAG: &str = concat!("triad-runtime-id:", env!("TRIAD_RUNTIME_ID"));
