@@ -278,9 +278,11 @@ pub fn label(platform: Option<Platform>, folder: &str) -> String {
 /// `None` when it carries none (built before runtime ids, or not a triad runtime).
 #[must_use]
 pub fn runtime_id(bytes: &[u8]) -> Option<&str> {
-    const KEY: &[u8] = b"triad-runtime-id:";
-    let at = bytes.windows(KEY.len()).position(|w| w == KEY)? + KEY.len();
-    let id = bytes.get(at..at + 16)?;
+    use crate::fmu::runtime_id::{RUNTIME_ID, RUNTIME_TAG};
+    // `triad-runtime-id:`, the tag without the id
+    let key = &RUNTIME_TAG.as_bytes()[..RUNTIME_TAG.len() - RUNTIME_ID.len()];
+    let at = bytes.windows(key.len()).position(|w| w == key)? + key.len();
+    let id = bytes.get(at..at + RUNTIME_ID.len())?;
     id.iter()
         .all(u8::is_ascii_hexdigit)
         .then(|| std::str::from_utf8(id).ok())

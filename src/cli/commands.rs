@@ -9,6 +9,15 @@ use super::error::CliError;
 use super::import_args::ImportArgs;
 use super::load::{is_urdf, load, load_noted, load_urdf, no_import_options};
 
+/// Prints a note on standard output: `note: …`, or as it is when it is a warning (`warning: …`).
+fn print_note(note: &str) {
+    if note.starts_with("warning:") {
+        println!("{note}");
+    } else {
+        println!("note: {note}");
+    }
+}
+
 /// Validates MODEL (a URDF imported as `urdf` asks); prints `ok`, a summary and the notes of
 /// the import and of the mechanics. Writes nothing.
 pub fn check(model: &str, urdf: &ImportArgs) -> Result<(), CliError> {
@@ -34,12 +43,7 @@ pub fn check(model: &str, urdf: &ImportArgs) -> Result<(), CliError> {
         plural(count(Causality::Parameter), "parameter", "parameters")
     );
     for note in import_notes.iter().chain(built.notes()) {
-        // a note that is a warning says so itself
-        if note.starts_with("warning:") {
-            println!("{note}");
-        } else {
-            println!("note: {note}");
-        }
+        print_note(note);
     }
     Ok(())
 }
@@ -156,11 +160,7 @@ pub fn build(
         );
     }
     for note in &built.notes {
-        if note.starts_with("warning:") {
-            println!("{note}");
-        } else {
-            println!("note: {note}");
-        }
+        print_note(note);
     }
     println!("wrote {}", built.path.display());
     Ok(())

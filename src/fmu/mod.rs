@@ -33,6 +33,5 @@ pub mod status;
 pub use capabilities::{Capabilities, CAPABILITIES};
 pub use instance::{allowed, Instance, Mode, Op};
 pub use log::{Category, LogSink};
-pub use runtime_id::{RUNTIME_ID, RUNTIME_TAG};
 pub use snapshot::Snapshot;
 pub use status::{FmuError, Status};

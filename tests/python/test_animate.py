@@ -265,18 +265,30 @@ def on_page(x, y, margin=4):
     return margin <= x < SIZE[0] - margin and margin <= y < SIZE[1] - margin
 
 
+def shot_pair(b, setup, change, restore, path):
+    """The page after the script `setup` (also written to `path`) and after `change` on top of
+    it, as images; then `restore`."""
+    b.evaluate(setup)
+    b.next_frame()
+    a = image(b.screenshot(str(path)))
+    b.evaluate(change)
+    b.next_frame()
+    e = image(b.screenshot())
+    b.evaluate(restore)
+    b.next_frame()
+    return a, e
+
+
 def check_ground(b, name):
     """The ground's pixels: every checker cell near the model whose centre, projected from the
     page's reported plane, is well inside the page shows its cell's tone (odd cells darker)."""
     g = b.evaluate("window.triad.ground")
-    b.evaluate("window.triad.setRobotVisible(false); window.triad.showForces(false); window.triad.setHelpersVisible(false)")
-    b.next_frame()
-    a = image(b.screenshot(str(SHOTS / f"{name}_ground.png")))
-    b.evaluate("window.triad.setGroundVisible(false)")
-    b.next_frame()
-    e = image(b.screenshot())
-    b.evaluate("window.triad.setGroundVisible(true); window.triad.setRobotVisible(true); window.triad.setHelpersVisible(true)")
-    b.next_frame()
+    a, e = shot_pair(
+        b,
+        "window.triad.setRobotVisible(false); window.triad.showForces(false); window.triad.setHelpersVisible(false)",
+        "window.triad.setGroundVisible(false)",
+        "window.triad.setGroundVisible(true); window.triad.setRobotVisible(true); window.triad.setHelpersVisible(true)",
+        SHOTS / f"{name}_ground.png")
     mask = changed(a, e, tol=0.03)
     assert mask.mean() > 0.15, f"{name}: the ground covers only {mask.mean():.1%} of the page"
     n, h, cell = np.array(g["normal"]), g["height"], g["cell"]
@@ -305,14 +317,12 @@ def check_ground(b, name):
 
 def arrow_pixels(b, name):
     """The pixels the force arrows add (robot and ground hidden)."""
-    b.evaluate("window.triad.setRobotVisible(false); window.triad.setGroundVisible(false); window.triad.showForces(true)")
-    b.next_frame()
-    a = image(b.screenshot(str(SHOTS / f"{name}.png")))
-    b.evaluate("window.triad.showForces(false)")
-    b.next_frame()
-    e = image(b.screenshot())
-    b.evaluate("window.triad.setRobotVisible(true); window.triad.setGroundVisible(true); window.triad.showForces(true)")
-    b.next_frame()
+    a, e = shot_pair(
+        b,
+        "window.triad.setRobotVisible(false); window.triad.setGroundVisible(false); window.triad.showForces(true)",
+        "window.triad.showForces(false)",
+        "window.triad.setRobotVisible(true); window.triad.setGroundVisible(true); window.triad.showForces(true)",
+        SHOTS / f"{name}.png")
     return changed(a, e)
 
 
