@@ -24,8 +24,8 @@
 //! | feature | invariants | distance |
 //! |---|---|---|
 //! | sphere–sphere | `|c_a − c_b|²` | `√π₀` |
-//! | point–segment (sphere–capsule) | `|c − p₀|²`, `(c − p₀)·(p₁ − p₀)` | to the nearest point `p₀ + t(p₁ − p₀)`, `t` clamped |
-//! | segment–segment (capsule–capsule) | `u·v, u·w, v·w, w·w` (`u, v` the segments, `w = a₀ − b₀`) | nearest points, clamped (Ericson) |
+//! | point–segment (sphere–capsule) | `|c − m|²`, `(c − m)·v` (`m` the segment's centre, `v` its span) | to the nearest point `m + t v`, `t` clamped to `[−½, ½]` |
+//! | segment–segment (capsule–capsule) | `u·v, u·w, v·w, w·w` (`u, v` the segments, `w = c_a − c_b` their centres) | nearest points `c + s u`, clamped to `[−½, ½]` (Ericson) |
 //! | point–box (sphere–box, box corners, capsule ends) | `e_i·(c − o)`, the point in the box's axes | to the box; inside: minus the depth to the nearest face |
 //!
 //! The gap `G(π) − r_a − r_b` takes the discrete gradient of sequential difference quotients,
@@ -39,7 +39,17 @@
 //! so the force `f Σ Q_k ∇π_k(q̄)` does exactly `f ΔG` of work, and since every `∇π_k(q̄)` is
 //! the gradient of an invariant its forces and moments on the two bodies cancel: linear and
 //! angular momentum are exact. (Below `|Δπ_k| ≤ 1e-8 π_scale²` the quotient is replaced by the
-//! derivative at the mean, whose error is of third order in `Δπ_k`.) Friction between bodies
+//! derivative at the mean, whose error is of third order in `Δπ_k`; the derivative is exact,
+//! `∂G/∂π_k = (∂d²/∂π_k)/(2G)` at the nearest parameters held, since they minimise `d²`.)
+//!
+//! **Symmetry.** Segments and points are measured from the shapes' centres: a mirror symmetry of
+//! the pair (a capsule dropped square across another, a sphere onto a capsule's middle) maps
+//! each invariant to itself or to its negative, and `G` is even in the negated ones, bit for bit
+//! (`s`, `t` change sign exactly; every term of `d²` is a product of an even number of them).
+//! So where a symmetric motion keeps an odd invariant at 0 its quotient is the exact derivative
+//! there, `2s = 0`: no sideways force, no moment. (Measured from a segment's end, the same
+//! invariants mix a secant along `w·w` with a derivative along `u·w`, and their `O(Δπ²)`
+//! mismatch kicked a symmetric impact sideways.) Friction between bodies
 //! acts at one point, the middle of the nearest points at the midpoint configuration, as a
 //! material point of each body fixed over the step, so its two forces have no moment either.
 //! Not modelled: a box's edges crossing another box's edges or faces (box–box touches through
@@ -85,12 +95,12 @@ pub(crate) struct GroundRt {
 pub(crate) enum Measure {
     /// Sphere centres: invariant `|c_a − c_b|²`.
     Spheres,
-    /// A point of A and a segment of B of squared length `l2`.
+    /// A point of A and a segment of B (centre and span) of squared length `l2`.
     PointSegment {
         /// `|p₁ − p₀|²`, m².
         l2: f64,
     },
-    /// Segments of A and B of squared lengths `la2`, `lb2`.
+    /// Segments of A and B (centres and spans) of squared lengths `la2`, `lb2`.
     Segments {
         /// `|a₁ − a₀|²`, m².
         la2: f64,
@@ -117,8 +127,9 @@ pub(crate) struct Feature {
     pub rows: [DotRow; 4],
     /// How many rows are used.
     pub nrows: usize,
-    /// Material points of A and B that locate the nearest points (see [`Feature::nearest`]):
-    /// sphere centre / segment ends / point; box centre and axes on B.
+    /// Material points and axes of A and B that locate the nearest points (see
+    /// [`Feature::nearest`]): sphere centre; a segment's centre and span; a point and a box's
+    /// centre on B.
     pub pts: [LinVec; 4],
     /// Sum of the radii, m.
     pub radii: f64,
@@ -284,12 +295,13 @@ fn features(def: &ModelDef, c: &ContactDef, sa: usize, sb: usize, out: &mut Vec<
         (ShapeKind::Sphere { .. } | ShapeKind::Capsule { .. }, ShapeKind::Capsule { .. }) => {
             let (pa, ra) = ends(sa).expect("sphere or capsule");
             let (pb, rb) = ends(sb).expect("capsule");
-            let (b0, b1) = (LinVec::point_b(&pb[0]), LinVec::point_b(&pb[1]));
-            let v = b1.sub(&b0);
+            // centre and span of B's segment (module docs: "Symmetry")
+            let cb = LinVec::point_b(&(0.5 * (pb[0] + pb[1])));
+            let v = LinVec::axis_b(&(pb[1] - pb[0]));
             let lb2 = (pb[1] - pb[0]).norm_squared();
             if pa.len() == 1 {
                 let cpt = LinVec::point_a(&pa[0]);
-                let w = cpt.sub(&b0);
+                let w = cpt.sub(&cb);
                 let rows = [square(w), DotRow::new(w, v, 0.0)];
                 let scale = lb2.sqrt() + ra + rb;
                 let m = Measure::PointSegment { l2: lb2 };
@@ -299,14 +311,14 @@ fn features(def: &ModelDef, c: &ContactDef, sa: usize, sb: usize, out: &mut Vec<
                     (ba, bb),
                     m,
                     &rows,
-                    &[cpt, b0, b1],
+                    &[cpt, cb, v],
                     (ra, ra + rb),
                     scale,
                 );
             } else {
-                let (a0, a1) = (LinVec::point_a(&pa[0]), LinVec::point_a(&pa[1]));
-                let u = a1.sub(&a0);
-                let w = a0.sub(&b0);
+                let ca = LinVec::point_a(&(0.5 * (pa[0] + pa[1])));
+                let u = LinVec::axis_a(&(pa[1] - pa[0]));
+                let w = ca.sub(&cb);
                 let la2 = (pa[1] - pa[0]).norm_squared();
                 let rows = [
                     DotRow::new(u, v, 0.0),
@@ -322,7 +334,7 @@ fn features(def: &ModelDef, c: &ContactDef, sa: usize, sb: usize, out: &mut Vec<
                     (ba, bb),
                     m,
                     &rows,
-                    &[a0, a1, b0, b1],
+                    &[ca, u, cb, v],
                     (ra, ra + rb),
                     scale,
                 );
@@ -507,20 +519,8 @@ impl Feature {
     pub fn distance(&self, p: &[f64; 4]) -> f64 {
         match self.measure {
             Measure::Spheres => p[0].max(0.0).sqrt(),
-            Measure::PointSegment { l2 } => {
-                let t = if l2 > 0.0 {
-                    (p[1] / l2).clamp(0.0, 1.0)
-                } else {
-                    0.0
-                };
-                (p[0] - 2.0 * t * p[1] + t * t * l2).max(0.0).sqrt()
-            }
-            Measure::Segments { la2, lb2 } => {
-                let (s, t) = segment_params(la2, lb2, p[0], p[1], p[2]);
-                let d2 = p[3] + s * s * la2 + t * t * lb2 - 2.0 * s * t * p[0] + 2.0 * s * p[1]
-                    - 2.0 * t * p[2];
-                d2.max(0.0).sqrt()
-            }
+            Measure::PointSegment { l2 } => point_segment_d2(l2, p).0.max(0.0).sqrt(),
+            Measure::Segments { la2, lb2 } => segments_d2(la2, lb2, p).0.max(0.0).sqrt(),
             Measure::PointBox { half } => {
                 let xi = Vec3::new(p[0], p[1], p[2]);
                 let clamped = Vec3::new(
@@ -546,6 +546,56 @@ impl Feature {
         self.distance(p) - self.radii
     }
 
+    /// The derivatives `∂G/∂π_k` of the distance at invariants `p` (module docs), exact: the
+    /// nearest parameters minimise `d²`, so they are held. Zero where the distance is not
+    /// differentiable (zero distance between spheres or to a segment).
+    #[must_use]
+    pub fn distance_gradient(&self, p: &[f64; 4]) -> [f64; 4] {
+        // ∂√d² = ∂d² / (2√d²)
+        let root = |d2: f64, g: [f64; 4]| -> [f64; 4] {
+            let d = d2.max(0.0).sqrt();
+            if d > 0.0 {
+                g.map(|x| x / (2.0 * d))
+            } else {
+                [0.0; 4]
+            }
+        };
+        match self.measure {
+            Measure::Spheres => root(p[0], [1.0, 0.0, 0.0, 0.0]),
+            Measure::PointSegment { l2 } => {
+                let (d2, t) = point_segment_d2(l2, p);
+                root(d2, [1.0, -2.0 * t, 0.0, 0.0])
+            }
+            Measure::Segments { la2, lb2 } => {
+                let (d2, (s, t)) = segments_d2(la2, lb2, p);
+                root(d2, [-2.0 * s * t, 2.0 * s, -2.0 * t, 1.0])
+            }
+            Measure::PointBox { half } => {
+                let xi = Vec3::new(p[0], p[1], p[2]);
+                let clamped = Vec3::new(
+                    xi.x.clamp(-half.x, half.x),
+                    xi.y.clamp(-half.y, half.y),
+                    xi.z.clamp(-half.z, half.z),
+                );
+                let out = (xi - clamped).norm();
+                if out > 0.0 {
+                    let g = (xi - clamped) / out;
+                    [g.x, g.y, g.z, 0.0]
+                } else {
+                    // inside: minus the depth below the nearest face
+                    let i = (0..3)
+                        .min_by(|&a, &b| {
+                            (half[a] - xi[a].abs()).total_cmp(&(half[b] - xi[b].abs()))
+                        })
+                        .unwrap_or(0);
+                    let mut g = [0.0; 4];
+                    g[i] = if xi[i] < 0.0 { -1.0 } else { 1.0 };
+                    g
+                }
+            }
+        }
+    }
+
     /// The discrete gradient of the gap in the invariants from `p0` to `p1` (module formulas),
     /// symmetrised over the two orders.
     #[must_use]
@@ -563,14 +613,11 @@ impl Feature {
                     cur[k] = p1[k];
                     (self.gap(&cur) - before) / dp
                 } else {
-                    // the derivative at the mean, by a central difference
-                    let mid = 0.5 * (p0[k] + p1[k]);
-                    let e = 1e-6 * self.scale * self.scale;
-                    let (mut lo, mut hi) = (cur, cur);
-                    lo[k] = mid - e;
-                    hi[k] = mid + e;
+                    // the derivative at the mean
+                    let mut mid = cur;
+                    mid[k] = 0.5 * (p0[k] + p1[k]);
                     cur[k] = p1[k];
-                    (self.gap(&hi) - self.gap(&lo)) / (2.0 * e)
+                    self.distance_gradient(&mid)[k]
                 };
                 q[k] += 0.5 * value;
             }
@@ -586,20 +633,16 @@ impl Feature {
         let (pa, pb, fallback) = match self.measure {
             Measure::Spheres => (pt(0), pt(1), Vec3::z()),
             Measure::PointSegment { l2 } => {
-                let (c, b0, b1) = (pt(0), pt(1), pt(2));
-                let t = if l2 > 0.0 {
-                    ((c - b0).dot(&(b1 - b0)) / l2).clamp(0.0, 1.0)
-                } else {
-                    0.0
-                };
-                (c, b0 + (b1 - b0) * t, Vec3::z())
+                let (c, m, v) = (pt(0), pt(1), pt(2));
+                let t = point_param(l2, (c - m).dot(&v));
+                (c, m + v * t, Vec3::z())
             }
             Measure::Segments { la2, lb2 } => {
-                let (a0, a1, b0, b1) = (pt(0), pt(1), pt(2), pt(3));
-                let (u, v, w) = (a1 - a0, b1 - b0, a0 - b0);
+                let (ca, u, cb, v) = (pt(0), pt(1), pt(2), pt(3));
+                let w = ca - cb;
                 let (s, t) = segment_params(la2, lb2, u.dot(&v), u.dot(&w), v.dot(&w));
                 let fallback = u.cross(&v);
-                (a0 + u * s, b0 + v * t, fallback)
+                (ca + u * s, cb + v * t, fallback)
             }
             Measure::PointBox { half } => {
                 let p = self.invariants(qa, qb);
@@ -648,28 +691,53 @@ impl Feature {
     }
 }
 
-/// Ericson's nearest parameters `(s, t)` of segments `a₀ + s u`, `b₀ + t v` from `|u|² = la2`,
-/// `|v|² = lb2`, `b = u·v`, `c = u·w`, `f = v·w` (`w = a₀ − b₀`).
+/// The nearest parameter `t ∈ [−½, ½]` on a segment `m + t v` (`|v|² = l2`) of a point `c`,
+/// from `(c − m)·v`; odd in it, exactly.
+fn point_param(l2: f64, cv: f64) -> f64 {
+    if l2 > 0.0 {
+        (cv / l2).clamp(-0.5, 0.5)
+    } else {
+        0.0
+    }
+}
+
+/// `(d², t)` of a point and a segment from the invariants `p = [|c − m|², (c − m)·v]`.
+fn point_segment_d2(l2: f64, p: &[f64; 4]) -> (f64, f64) {
+    let t = point_param(l2, p[1]);
+    (p[0] - 2.0 * t * p[1] + t * t * l2, t)
+}
+
+/// `(d², (s, t))` of two segments from the invariants `p = [u·v, u·w, v·w, w·w]`.
+fn segments_d2(la2: f64, lb2: f64, p: &[f64; 4]) -> (f64, (f64, f64)) {
+    let (s, t) = segment_params(la2, lb2, p[0], p[1], p[2]);
+    let d2 =
+        p[3] + s * s * la2 + t * t * lb2 - 2.0 * s * t * p[0] + 2.0 * s * p[1] - 2.0 * t * p[2];
+    (d2, (s, t))
+}
+
+/// Ericson's nearest parameters `(s, t) ∈ [−½, ½]²` of segments `c_a + s u`, `c_b + t v` from
+/// `|u|² = la2`, `|v|² = lb2`, `b = u·v`, `c = u·w`, `f = v·w` (`w = c_a − c_b`). Odd in
+/// `(b, c)` for `s` and in `(b, f)` for `t`, bit for bit (module docs: "Symmetry").
 #[must_use]
 pub(crate) fn segment_params(la2: f64, lb2: f64, b: f64, c: f64, f: f64) -> (f64, f64) {
     let denom = la2 * lb2 - b * b;
     let mut s = if denom > 1e-12 * la2 * lb2 {
-        ((b * f - c * lb2) / denom).clamp(0.0, 1.0)
+        ((b * f - c * lb2) / denom).clamp(-0.5, 0.5)
     } else {
         0.0
     };
     let mut t = if lb2 > 0.0 { (b * s + f) / lb2 } else { 0.0 };
-    if t < 0.0 {
-        t = 0.0;
+    if t < -0.5 {
+        t = -0.5;
         s = if la2 > 0.0 {
-            (-c / la2).clamp(0.0, 1.0)
+            ((-0.5 * b - c) / la2).clamp(-0.5, 0.5)
         } else {
             0.0
         };
-    } else if t > 1.0 {
-        t = 1.0;
+    } else if t > 0.5 {
+        t = 0.5;
         s = if la2 > 0.0 {
-            ((b - c) / la2).clamp(0.0, 1.0)
+            ((0.5 * b - c) / la2).clamp(-0.5, 0.5)
         } else {
             0.0
         };
@@ -908,6 +976,59 @@ mod tests {
             let lhs: f64 = (0..4).map(|k| q[k] * (p1[k] - p0[k])).sum();
             let rhs = f.gap(&p1) - f.gap(&p0);
             assert!((lhs - rhs).abs() <= 1e-13, "{lhs} vs {rhs}");
+        }
+    }
+    /// The exact derivatives agree with central differences, and the distance is even in the
+    /// invariants that a mirror symmetry negates, bit for bit.
+    #[test]
+    fn distance_gradient_is_exact_and_distance_is_even() {
+        let capsule = |radius, length| ShapeKind::Capsule { radius, length };
+        let kinds = [
+            [ShapeKind::Sphere { radius: 0.05 }, capsule(0.03, 0.2)],
+            [capsule(0.02, 0.3), capsule(0.03, 0.2)],
+            [
+                ShapeKind::Sphere { radius: 0.05 },
+                ShapeKind::Cuboid {
+                    size: Vec3::new(0.2, 0.1, 0.3),
+                },
+            ],
+        ];
+        for k in kinds {
+            let rt = build(&model(k));
+            for seed in 0..100 {
+                let (qa, qb) = (nodes_at(seed), nodes_at(seed + 517));
+                for f in &rt.features {
+                    let (qa, qb) = if f.bodies.0 == 0 { (qa, qb) } else { (qb, qa) };
+                    let p = f.invariants(&qa, &qb);
+                    let g = f.distance_gradient(&p);
+                    for i in 0..f.nrows {
+                        let e = 1e-7 * f.scale * f.scale;
+                        let (mut hi, mut lo) = (p, p);
+                        hi[i] += e;
+                        lo[i] -= e;
+                        let fd = (f.distance(&hi) - f.distance(&lo)) / (2.0 * e);
+                        assert!(
+                            (g[i] - fd).abs() <= 1e-5 * (1.0 + fd.abs()),
+                            "{k:?} {seed} {i}: {} vs {fd} at {p:?}",
+                            g[i]
+                        );
+                    }
+                    // mirror symmetries: a segment's span reversed negates the invariants
+                    // that are linear in it
+                    let flips: &[&[usize]] = match f.measure {
+                        Measure::PointSegment { .. } => &[&[1]],
+                        Measure::Segments { .. } => &[&[0, 1], &[0, 2]],
+                        _ => &[],
+                    };
+                    for flip in flips {
+                        let mut m = p;
+                        for &i in *flip {
+                            m[i] = -m[i];
+                        }
+                        assert_eq!(f.distance(&m).to_bits(), f.distance(&p).to_bits(), "{k:?}");
+                    }
+                }
+            }
         }
     }
 }
