@@ -7,7 +7,7 @@
 //! two free spheres (no gravity), head-on and oblique, with friction:  Δp, ΔL ≤ 1e-13, E − W ≤ 1e-12
 //! capsules, a sphere on a box, two boxes:                               the same balances
 //! box on a ramp at tan θ = 0.5, 0.7, 0.89 μ:                          no creep over 10 s
-//! box on a ramp at tan θ = 0.95, 0.99 μ:                               creep within README's bound
+//! box on a ramp at tan θ = 0.95, 0.99 μ:                               creep within the guide's bound
 //! box on a ramp at tan θ = 1.5μ:                                         a = g (sin θ − μ cos θ)
 //! ```
 
@@ -131,9 +131,9 @@ fn along(s: &State, theta: f64) -> f64 {
 #[test]
 fn a_box_holds_on_a_ramp_below_the_friction_angle() {
     let mu: f64 = 0.6;
-    // Up to 0.9 of the cone the bristle sticks (README "Contact"): once the contact has taken
+    // Up to 0.9 of the cone the bristle sticks (docs/guide/contact.md, "The model"): once the contact has taken
     // up the load (1.5 s), nothing moves by more than 0.1 µm in 10 s. Between 0.9 μ and μ the bristle's anchor slides
-    // slowly: the creep rate is bounded by what README documents (measured 5.1e-4 m/s at
+    // slowly: the creep rate is bounded by what docs/guide/contact.md documents (measured 5.1e-4 m/s at
     // 0.95 μ and 3.8e-3 m/s at 0.99 μ).
     for (ratio, bound) in [
         (0.5, 0.0),

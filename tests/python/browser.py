@@ -6,7 +6,7 @@ its software rasteriser (SwiftShader), so no GPU or display is needed.
 
     python tests/python/browser.py PAGE.html OUT.png [--hash 't=1&play=0'] [--size 1200x800]
 
-writes a screenshot of PAGE once its first frame is drawn (the README's still is made so).
+writes a screenshot of PAGE once its first frame is drawn (the still of docs/guide/see-the-motion.md is made so).
 """
 import argparse
 import base64

@@ -9,7 +9,8 @@
 //!   solve and update);
 //! - `reduced`: Newton on the joint increments for trees (the discrete null-space method);
 //! - `predictor` (the Newton start from the previous stages), `finish` (velocity update, work
-//!   account, unwrapped angles), `identity` (the spurious roots a converged stage is refused for),
+//!   account, unwrapped angles), `momentum` (bodies in contact: the momenta exact at any
+//!   tolerance), `identity` (the spurious roots a converged stage is refused for),
 //!   `stage` (a robust stage, the order-4 composition), `error`.
 //!
 //! Uses: `model`, `linalg` and `crate::math`; never `run`.
@@ -23,6 +24,7 @@ pub(crate) mod finish;
 pub(crate) mod identity;
 pub(crate) mod increment;
 pub(crate) mod joint_loads;
+pub(crate) mod momentum;
 pub(crate) mod newton;
 pub(crate) mod predictor;
 pub(crate) mod reduced;

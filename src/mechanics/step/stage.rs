@@ -31,6 +31,7 @@
 use super::error::StepError;
 use super::finish::finish;
 use super::identity::{balanced, narrowest, COLLAPSED, LARGE_TURN};
+use super::momentum::balance;
 use super::newton::{evaluate, resolve, solve, stage_rates, update, Held, Mode, Work};
 use super::predictor::{invalidate, predict, record, Start};
 use crate::mechanics::model::constraint::body_nodes;
@@ -310,6 +311,8 @@ fn stage(
     } else {
         multiplier_newton(model, ws, held, h, chord_accept)?
     };
+    // bodies in contact: the momenta exact at any tolerance (`momentum`)
+    balance(model, ws, held, h);
     // a stage that turned a body by about π, or whose root breaks the energy identity, is
     // refused (near π the rows are ill-conditioned, at π a root of them need not solve the
     // equations; see `identity`)
