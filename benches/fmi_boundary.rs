@@ -3,6 +3,11 @@
 //! as a C host would, against the same step through `Simulation::advance` (what `triad
 //! simulate` runs) and the bare `mechanics::step`.
 //! Run: `cargo bench --bench fmi_boundary -- --warm-up-time 1 --measurement-time 3`.
+//!
+//! Group `hostile`: one `fmi2DoStep` of H = 1e6 after spinning the shipped space_arm and
+//! robot_arm up under ±1000 N·m for 0.05 s, the call that the work bound ends
+//! (`sim::WORK_PER_SUBSTEP`): its time in seconds is the bound's cost on this machine.
+//! Run: `cargo bench --bench fmi_boundary -- hostile`.
 use criterion::{criterion_group, criterion_main, Criterion};
 use triad::mechanics::step;
 use triad::sim::Simulation;
@@ -53,5 +58,34 @@ fn bench(c: &mut Criterion) {
     g.finish();
 }
 
-criterion_group!(benches, bench);
+/// One hostile `fmi2DoStep` (module docs) of the shipped model `name`.
+fn hostile_call(text: &str) {
+    let m = fmu_support::TestModel::new(text);
+    let fmu = fmu_support::Fmu::initialised(&m);
+    let taus = m.vrs(triad::variables::Causality::Input);
+    let values: Vec<f64> = (0..taus.len())
+        .map(|i| if i % 2 == 0 { 1e3 } else { -1e3 })
+        .collect();
+    assert_eq!(fmu.set_real(&taus, &values), 0);
+    assert_eq!(fmu.step(0.0, 0.05), 0);
+    assert_eq!(fmu.set_real(&taus, &vec![0.0; taus.len()]), 0);
+    // fmi2Discard at the work bound
+    assert_eq!(fmu.step(0.05, 1e6), 2);
+}
+
+fn hostile(c: &mut Criterion) {
+    let mut g = c.benchmark_group("hostile");
+    g.sample_size(10);
+    for name in ["space_arm", "robot_arm"] {
+        let text = bundled()
+            .iter()
+            .find(|(n, _)| *n == name)
+            .map(|(_, text)| *text)
+            .expect("shipped");
+        g.bench_function(name, |b| b.iter(|| hostile_call(text)));
+    }
+    g.finish();
+}
+
+criterion_group!(benches, bench, hostile);
 criterion_main!(benches);

@@ -18,6 +18,15 @@
 //!   taken is still an energy–momentum step, so the invariants stay exact;
 //! - a communication step needing more than `max_substeps` sub-steps takes that many and stops,
 //!   reporting the time reached ([`Failure::WorkBound`]);
+//! - a communication step whose Newton work exceeds [`WORK_PER_SUBSTEP`]` × max_substeps`
+//!   body-iterations (Newton iterations × the model's size, [`Simulation::work_size`];
+//!   a factorisation counts as three iterations) stops after the sub-step that crossed it, at
+//!   the time reached ([`Failure::EffortBound`]): sub-steps in violent states (huge torques,
+//!   bodies spinning at 1000 rad/s) cost tens to hundreds of Newton iterations each, and the
+//!   sub-step count alone let one call run for 90 s. One body-iteration costs 0.3–0.7 µs on a
+//!   2-core x86 machine (loops and contacts are counted in the size), so the default bound
+//!   (100 000 sub-steps: 4e6 body-iterations) is about 1–2 s of CPU; ordinary calls of 100 000
+//!   sub-steps of the shipped models need 1–4 iterations a sub-step, within it;
 //! - a step whose outputs are not all finite is rolled back ([`Failure::NonFinite`]).
 
 use crate::mechanics::{
@@ -29,6 +38,10 @@ use thiserror::Error;
 /// A communication step shorter than this fraction of `max_step` is carried into the next one
 /// instead of being integrated on its own (1 ns at the default `max_step` of 1 ms).
 pub const MIN_STEP_RATIO: f64 = 1e-6;
+
+/// Newton body-iterations (iterations × [`Simulation::work_size`]) one communication step may
+/// take per sub-step allowed (`solver.max_substeps`): module docs.
+pub const WORK_PER_SUBSTEP: f64 = 40.0;
 
 /// Why a communication step stopped short.
 #[derive(Debug, Error, Clone, PartialEq)]
@@ -44,9 +57,31 @@ pub enum Failure {
         /// `solver.max_substeps`.
         bound: u32,
     },
+    /// The step's Newton work exceeded its bound; it stopped after the sub-step that crossed it.
+    #[error("the step's Newton work reached {work:.3e} body-iterations, more than its bound of {bound:.3e} ({WORK_PER_SUBSTEP} × solver.max_substeps); it stopped after {steps} sub-steps")]
+    EffortBound {
+        /// Newton iterations done (a factorisation counts three) × the model's size.
+        work: f64,
+        /// The bound, body-iterations.
+        bound: f64,
+        /// Sub-steps taken (attempts, with error control).
+        steps: u64,
+    },
     /// An output became NaN or infinite (the state is rolled back).
     #[error("non-finite output ({0})")]
     NonFinite(String),
+}
+
+impl Failure {
+    /// Whether the step stopped at the time reached with good state (a work bound), rather
+    /// than being rolled back.
+    #[must_use]
+    pub fn stopped_short(&self) -> bool {
+        matches!(
+            self,
+            Failure::WorkBound { .. } | Failure::EffortBound { .. }
+        )
+    }
 }
 
 /// Why a communication step stopped short, and where the run stands.
@@ -174,6 +209,35 @@ impl Simulation {
         }
     }
 
+    /// The model's size for the work bound: its bodies, 1.5 units per constraint row of a
+    /// loop-closing joint (the bordered solve) and a quarter per contact point and feature;
+    /// what one Newton iteration costs is about proportional to it.
+    #[must_use]
+    pub fn work_size(&self) -> f64 {
+        let m = &self.model;
+        let loops: usize = m
+            .joints
+            .iter()
+            .enumerate()
+            .filter(|(j, jt)| m.tree_joint[jt.child] != Some(*j))
+            .map(|(_, jt)| jt.rows.len())
+            .sum();
+        (m.def().bodies.len().max(1) as f64)
+            + 1.5 * loops as f64
+            + 0.25 * m.contact.bristles() as f64
+    }
+
+    /// The Newton body-iterations one communication step may take (module docs).
+    #[must_use]
+    pub fn work_bound(&self) -> f64 {
+        WORK_PER_SUBSTEP * f64::from(self.model.settings().max_substeps.max(1))
+    }
+
+    /// The Newton work since `start` (an effort count), body-iterations.
+    fn work_since(&self, start: u64) -> f64 {
+        (self.state.effort() - start) as f64 * self.work_size()
+    }
+
     /// Advances by the communication step `h`, landing on `t + h` exactly (the last sub-step
     /// ends at the float `t + h`). Inputs are held constant. The span integrated is `h` plus the
     /// lag carried from earlier steps too short to integrate (module docs), in `substeps` equal
@@ -187,7 +251,7 @@ impl Simulation {
         let result = self.advance_state(h);
         let moved = match &result {
             Ok(moved) => *moved,
-            Err(e) => matches!(e.error, Failure::WorkBound { .. }),
+            Err(e) => e.error.stopped_short(),
         };
         if moved {
             // outputs once per communication step, after the last sub-step
@@ -238,12 +302,27 @@ impl Simulation {
         // and the lag must be undone too)
         self.saved.copy_values_from(&self.state);
         let dt = span / needed;
-        for _ in 0..n {
+        let (start, budget) = (self.state.effort(), self.work_bound());
+        for k in 0..n {
             if let Err(error) = step_state(&self.model, &mut self.state, dt) {
                 self.state.copy_values_from(&self.saved);
                 return Err(AdvanceError {
                     error: error.into(),
                     last_good_time: t0,
+                });
+            }
+            let work = self.work_since(start);
+            if work > budget && k + 1 < n {
+                self.state.set_lag(0.0);
+                let reached = (t0 - self.saved.lag()) + dt * (k + 1) as f64;
+                self.state.set_time(reached);
+                return Err(AdvanceError {
+                    error: Failure::EffortBound {
+                        work,
+                        bound: budget,
+                        steps: k as u64 + 1,
+                    },
+                    last_good_time: reached,
                 });
             }
         }
@@ -271,7 +350,22 @@ impl Simulation {
         let mut done = 0.0;
         // a step that must end on a joint-stop crossing (`Verdict::Land`)
         let mut landing: Option<f64> = None;
+        let (start, budget) = (self.state.effort(), self.work_bound());
         while remaining > 0.0 {
+            let work = self.work_since(start);
+            if work > budget {
+                let reached = (t0 - self.saved.lag()) + done;
+                self.state.set_lag(0.0);
+                self.state.set_time(reached);
+                return Err(AdvanceError {
+                    error: Failure::EffortBound {
+                        work,
+                        bound: budget,
+                        steps: u64::from(attempts),
+                    },
+                    last_good_time: reached,
+                });
+            }
             if attempts >= bound {
                 let reached = (t0 - self.saved.lag()) + done;
                 self.state.set_lag(0.0);

@@ -424,7 +424,7 @@ impl Instance {
             Err(e) => {
                 self.last_successful_time = e.last_good_time;
                 let what = match e.error {
-                    Failure::WorkBound { .. } => format!("stopped at t = {} ({}); continue from there with shorter communication steps, or raise solver.max_substeps", e.last_good_time, e.error),
+                    Failure::WorkBound { .. } | Failure::EffortBound { .. } => format!("stopped at t = {} ({}); continue from there with shorter communication steps, or raise solver.max_substeps", e.last_good_time, e.error),
                     _ => format!("failed ({}); state rolled back to t = {}, continue from there with a smaller step or other inputs", e.error, e.last_good_time),
                 };
                 Err(FmuError::Discard(format!(

@@ -209,6 +209,14 @@ impl State {
         self.stiffness.clone_from(&src.stiffness);
     }
 
+    /// Newton work done by this state's steps so far, in iterations (one per residual
+    /// evaluation and solve, two more per factorisation); a measure to bound the work of a
+    /// communication step by, not part of the state's values or snapshot.
+    #[must_use]
+    pub fn effort(&self) -> u64 {
+        self.ws.effort
+    }
+
     /// How many steps of this run an order-4 composition redid as order-2 stages because a
     /// joint's damping was too stiff for the step (its backward stage would have fed energy
     /// in), and the model's index of the joint of the first such step.

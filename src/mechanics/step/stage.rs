@@ -34,6 +34,7 @@ use super::identity::{balanced, narrowest, COLLAPSED, LARGE_TURN};
 use super::momentum::balance;
 use super::newton::{evaluate, resolve, solve, stage_rates, update, Held, Mode, Work};
 use super::predictor::{invalidate, predict, record, Start};
+use super::work::FACTOR_EFFORT;
 use crate::mechanics::model::constraint::body_nodes;
 use crate::mechanics::model::runtime::Model;
 
@@ -381,6 +382,7 @@ fn multiplier_newton(
         if !n.res.is_finite() {
             return Err(StepError::NonFinite("state"));
         }
+        ws.effort += 1 + if fresh { FACTOR_EFFORT } else { 0 };
         let solved = if fresh {
             factorizations += 1;
             solve(model, ws)

@@ -41,6 +41,10 @@ pub struct Memory {
     pub settle: u32,
 }
 
+/// What a factorisation adds to [`Work::effort`], in iterations (an assembly and factorisation
+/// costs about two residual evaluations and solves).
+pub const FACTOR_EFFORT: u64 = 2;
+
 /// A reduced stage settles its start onto the joint rows once in this many (the rows' round-off
 /// grows as a random walk in between, by about √8 ε; settling every stage cost 5 % of a step).
 pub const SETTLE_EVERY: u32 = 8;
@@ -116,6 +120,10 @@ pub(crate) struct Work {
     pub hprev: [[f64; HISTORY]; TABLES],
     /// The iteration's memory of the last stages (see [`Memory`]).
     pub memory: Memory,
+    /// Newton work done on this workspace, in iterations: one per residual evaluation and
+    /// solve, [`FACTOR_EFFORT`] more per factorisation (a measure, not state: never in a
+    /// snapshot; callers bound the difference over a communication step).
+    pub effort: u64,
     /// Newton iterate.
     pub q: Vec<f64>,
     /// Increment `q − qₙ`, kept separately so that velocities do not suffer the cancellation
@@ -198,6 +206,7 @@ impl Work {
             hist: vec![0.0; history_len(model)],
             hprev: [[0.0; HISTORY]; TABLES],
             memory: Memory::default(),
+            effort: 0,
             q: model.q0.clone(),
             dq: vec![0.0; 12 * nb],
             qbar: model.q0.clone(),

@@ -19,7 +19,7 @@
 //! - a fresh matrix whose first chord update contracts slower than [`GIVE_UP`], or the
 //!   iteration budget, returns `NoConvergence`: the stage is redone by the multiplier form.
 
-use super::super::work::{Held, Work};
+use super::super::work::{Held, Work, FACTOR_EFFORT};
 use super::eval::evaluate;
 use super::place::{defects, prepare, size, update};
 use super::tree::{factor, solve};
@@ -149,6 +149,7 @@ fn run(
         if !res.is_finite() {
             return Err(StepError::NonFinite("state"));
         }
+        ws.effort += 1 + if fresh { FACTOR_EFFORT } else { 0 };
         if fresh {
             factorizations += 1;
             since_factor = 0;
