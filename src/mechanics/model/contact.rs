@@ -57,8 +57,8 @@
 //! only), and cylinders against other shapes (they touch the ground only).
 
 use super::constraint::{body_nodes, DotRow, LinVec, Nodes};
-use super::contact_law::energy;
 use super::def::{ContactDef, ContactLaw, ModelDef, ShapeKind, SolverSettings};
+use super::one_sided::energy;
 use crate::math::{Mat3, Vec3};
 
 /// Points on each rim of a cylinder touching the ground.

@@ -6,9 +6,8 @@
 //!
 //! ```text
 //! V(x)  = ½k ⟨x⟩²
-//! e     = (V(x₁) − V(x₀)) / (x₁ − x₀)        closed form (as the joint stops'): both in
-//!                                               contact k(x₀ + x₁)/2, entering ½k x₁²/(x₁ − x₀),
-//!                                               leaving ½k x₀²/(x₀ − x₁)
+//! e     = (V(x₁) − V(x₀)) / (x₁ − x₀)        the one-sided spring's discrete gradient
+//!                                               (`one_sided`, shared with the joint stops)
 //! f     = e (1 + ψ(z)),  z = d Δx/h                         the normal force over the step
 //! ψ(z)  = z  (z ≥ −½),   −1 + ½ e^{2z + 1}  (z < −½)       C¹, ψ ≥ −1, z ψ(z) ≥ 0
 //! f Δx  = ΔV + D_n,   D_n = e ψ(z) Δx ≥ 0                   exact; D_n counted in the work
@@ -39,6 +38,7 @@
 //! C¹ (a hard switch between sticking and sliding is not), so the force is C¹ in the iterate,
 //! Newton converges through the switch, and friction never does positive work over a step.
 
+use super::one_sided::gradient;
 #[cfg(test)]
 use crate::math::Mat3;
 use crate::math::Vec3;
@@ -56,32 +56,6 @@ pub(crate) struct Normal {
     pub mean: f64,
 }
 
-/// Discrete gradient `(V(x₁) − V(x₀))/(x₁ − x₀)` of `½k⟨x⟩²` and its derivative in `x₁`.
-fn one_sided(k: f64, x0: f64, x1: f64) -> (f64, f64) {
-    match (x0 > 0.0, x1 > 0.0) {
-        (false, false) => (0.0, 0.0),
-        (true, true) => (0.5 * k * (x0 + x1), 0.5 * k),
-        (false, true) => {
-            let d = x1 - x0;
-            (
-                0.5 * k * x1 * x1 / d,
-                0.5 * k * x1 * (x1 - 2.0 * x0) / (d * d),
-            )
-        }
-        (true, false) => {
-            let d = x0 - x1;
-            (0.5 * k * x0 * x0 / d, 0.5 * k * x0 * x0 / (d * d))
-        }
-    }
-}
-
-/// Stored elastic energy `½k⟨x⟩²` of a penetration `x`, J.
-#[must_use]
-pub(crate) fn energy(k: f64, x: f64) -> f64 {
-    let p = x.max(0.0);
-    0.5 * k * p * p
-}
-
 /// `ψ(z)` and `ψ'(z)` (module formulas).
 fn psi(z: f64) -> (f64, f64) {
     if z >= -0.5 {
@@ -95,7 +69,7 @@ fn psi(z: f64) -> (f64, f64) {
 /// The normal force over a step of size `h` from penetration `x0` to `x1` (module formulas).
 #[must_use]
 pub(crate) fn normal(k: f64, d: f64, x0: f64, x1: f64, h: f64) -> Normal {
-    let (e, de) = one_sided(k, x0, x1);
+    let (e, de) = gradient(k, x0, x1);
     let mean = 0.5 * (x0.max(0.0) + x1.max(0.0));
     let dx = x1 - x0;
     let (p, dp) = psi(d * dx / h);
@@ -193,6 +167,7 @@ pub(crate) fn friction(kt: f64, ct: f64, cap: f64, s0: Vec3, u: Vec3, h: f64) ->
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::mechanics::model::one_sided::energy;
 
     #[test]
     fn the_normal_force_does_the_exact_work() {

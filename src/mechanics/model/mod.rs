@@ -12,8 +12,9 @@
 //!   rotation increment, projected blocks), where the model's rows land in the linear system
 //!   (`sink`), and the M-orthogonal projection of velocities onto the admissible ones
 //!   (`projection`; it makes the initial rates consistent and the reported rates exact);
-//! - one-sided joint stops as an exact discrete gradient (`stops`); contact with the ground and
-//!   between bodies: geometry (`contact`) and laws (`contact_law`);
+//! - the one-sided spring written once (`one_sided`); joint stops as an exact discrete gradient
+//!   (`stops`); contact with the ground and between bodies: geometry (`contact`) and laws
+//!   (`contact_law`);
 //! - the valid range of every parameter and solver setting (`ranges`), shared by the spec
 //!   check and the FMU;
 //! - test models shared by several layers' unit tests (`fixtures`).
@@ -34,6 +35,7 @@ pub mod joint;
 pub(crate) mod kernels;
 pub mod kinematics;
 pub mod loops;
+pub(crate) mod one_sided;
 pub(crate) mod projection;
 pub mod ranges;
 pub(crate) mod redundancy;

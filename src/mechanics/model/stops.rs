@@ -6,19 +6,20 @@
 //!
 //! ```text
 //! V(t)  = ½k ⟨u⟩² + ½k ⟨w⟩²                     (⟨x⟩ = max(x, 0), the penetration)
-//! g     = (V(t₁) − V(t₀)) / Δt                   the discrete gradient, in closed form:
-//!         both in contact:   k (x₀ + x₁)/2
-//!         entering (x₀ ≤ 0 < x₁):   ½k x₁² / (x₁ − x₀)
-//!         leaving  (x₁ ≤ 0 < x₀):   ½k x₀² / (x₀ − x₁)   (x = u, or w with g's sign flipped)
+//! g     = (V(t₁) − V(t₀)) / Δt                   the discrete gradient of the one-sided
+//!                                                spring (`one_sided`: the contact's normal
+//!                                                law uses the same), x = u, or w with g's
+//!                                                sign flipped
 //! f     = −g − c p̄ Δt/h,   p̄ = ½(⟨x₀⟩ + ⟨x₁⟩)      the force on the coordinate over the step
 //! f Δt  = −(V(t₁) − V(t₀)) − c p̄ Δt²/h             (exact: the stop's energy and its loss)
 //! ```
 //!
-//! Nothing divides by a small increment: a quotient appears only when the step crosses the
-//! limit, and then `|x₁ − x₀| ≥ |x₁|, |x₀|`. The force is continuous in `t₁` (the damper grows
+//! Nothing divides by a small increment (`one_sided`). The force is continuous in `t₁` (the damper grows
 //! from zero with the penetration, so it neither jumps at contact nor pulls at separation);
 //! `∂f/∂t₁` is piecewise smooth, enough for Newton. The loss `c p̄ Δt²/h ≥ 0` is counted in the
 //! work; `V` in the energy.
+
+use super::one_sided::{energy, gradient};
 
 /// The stops and effort limit of one joint coordinate (SI units of the coordinate: rad or m).
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -33,31 +34,10 @@ pub(crate) struct Stops {
     pub damping: f64,
 }
 
-/// Discrete gradient of `½k⟨x⟩²` from `x0` to `x1` and its derivative in `x1`.
-fn one_sided(k: f64, x0: f64, x1: f64) -> (f64, f64) {
-    match (x0 > 0.0, x1 > 0.0) {
-        (false, false) => (0.0, 0.0),
-        (true, true) => (0.5 * k * (x0 + x1), 0.5 * k),
-        (false, true) => {
-            let d = x1 - x0;
-            (
-                0.5 * k * x1 * x1 / d,
-                0.5 * k * x1 * (x1 - 2.0 * x0) / (d * d),
-            )
-        }
-        (true, false) => {
-            let d = x0 - x1;
-            (0.5 * k * x0 * x0 / d, 0.5 * k * x0 * x0 / (d * d))
-        }
-    }
-}
-
 impl Stops {
     /// Stored energy `V(t)`, J.
     pub fn energy(&self, t: f64) -> f64 {
-        let u = (t - self.upper).max(0.0);
-        let w = (self.lower - t).max(0.0);
-        0.5 * self.stiffness * (u * u + w * w)
+        energy(self.stiffness, t - self.upper) + energy(self.stiffness, self.lower - t)
     }
 
     /// Mean penetration `p̄` over a step from `t0` by `dt` and `∂p̄/∂t₁`.
@@ -75,9 +55,9 @@ impl Stops {
     pub fn force(&self, t0: f64, dt: f64, h: f64) -> (f64, f64) {
         let t1 = t0 + dt;
         let k = self.stiffness;
-        let (gu, dgu) = one_sided(k, t0 - self.upper, t1 - self.upper);
+        let (gu, dgu) = gradient(k, t0 - self.upper, t1 - self.upper);
         // w = lower − t: the gradient in t is minus the gradient in w, its t₁-derivative equal
-        let (gw, dgw) = one_sided(k, self.lower - t0, self.lower - t1);
+        let (gw, dgw) = gradient(k, self.lower - t0, self.lower - t1);
         let (p, dp) = self.mean_penetration(t0, dt);
         let c = self.damping / h;
         let f = -gu + gw - c * p * dt;
