@@ -11,17 +11,12 @@
 //! box on a ramp at tan θ = 1.5μ:                                         a = g (sin θ − μ cos θ)
 //! ```
 
-use triad::math::Vec3;
-use triad::mechanics::{step, Model, State};
-use triad::spec::{Format, Spec};
+mod common;
 
-fn model(text: &str) -> (Model, State) {
-    let spec = Spec::from_str(text, Format::Toml, "test.toml").unwrap_or_else(|e| panic!("{e}"));
-    let (def, settings) = spec.lower().unwrap();
-    let m = Model::new(&def, settings).unwrap_or_else(|e| panic!("{e}"));
-    let s = State::new(&m);
-    (m, s)
-}
+use common::spec_model as model;
+use triad::math::Vec3;
+use triad::mechanics::{step, State};
+use triad::spec::{Format, Spec};
 
 /// Two free bodies without gravity carrying shapes `a` and `b` (TOML inline tables), thrown at
 /// each other with spins.

@@ -10,17 +10,10 @@
 //! box tumbling onto corners and edges:  E − W at round-off, orders 2 and 4; at rest with damping
 //! ```
 
-use triad::mechanics::{controlled_step, step, Model, State, Verdict};
-use triad::spec::{Format, Spec};
+mod common;
 
-/// Model and initial state of a spec text.
-fn model(text: &str) -> (Model, State) {
-    let spec = Spec::from_str(text, Format::Toml, "test.toml").unwrap_or_else(|e| panic!("{e}"));
-    let (def, settings) = spec.lower().unwrap();
-    let m = Model::new(&def, settings).unwrap_or_else(|e| panic!("{e}"));
-    let s = State::new(&m);
-    (m, s)
-}
+use common::spec_model as model;
+use triad::mechanics::{controlled_step, step, State, Verdict};
 
 /// A ball of mass 1 kg, radius 0.1 m (inertia 2/5 m r²) at height `z` with velocity `v` and
 /// angular velocity `w`, on a ground with friction `mu`, stiffness `k`, damping `d`.

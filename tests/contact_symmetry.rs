@@ -11,16 +11,10 @@
 //! two boxes, corner to face, default steps, tolerance 1e-10 and 1e-6: Δp, ΔL ≤ 1e-13 of p, L
 //! ```
 
-use triad::mechanics::{step, Model, State};
-use triad::spec::{Format, Spec};
+mod common;
 
-fn model(text: &str) -> (Model, State) {
-    let spec = Spec::from_str(text, Format::Toml, "test.toml").unwrap_or_else(|e| panic!("{e}"));
-    let (def, settings) = spec.lower().unwrap();
-    let m = Model::new(&def, settings).unwrap_or_else(|e| panic!("{e}"));
-    let s = State::new(&m);
-    (m, s)
-}
+use common::spec_model as model;
+use triad::mechanics::step;
 
 /// Body `top` (shape `shape_top`, its axis along world x) above body `bottom` (shape
 /// `shape_bottom`, its axis along world y, held by a weld when `welded`), falling at 1 m/s

@@ -19,6 +19,16 @@ pub const KINDS: [JointType; 7] = [
     JointType::Fixed,
 ];
 
+/// Model and initial state of a TOML spec text (panics with the spec's message).
+pub fn spec_model(text: &str) -> (Model, State) {
+    let spec = triad::spec::Spec::from_str(text, triad::spec::Format::Toml, "test.toml")
+        .unwrap_or_else(|e| panic!("{e}"));
+    let (def, settings) = spec.lower().unwrap();
+    let m = Model::new(&def, settings).unwrap_or_else(|e| panic!("{e}"));
+    let s = State::new(&m);
+    (m, s)
+}
+
 /// Runs the `triad` binary with `args` in `cwd` (integration tests only: the binary's path is
 /// known to them, not to the benches and examples that share this module).
 pub fn triad(args: &[&str], cwd: &std::path::Path) -> std::process::Output {

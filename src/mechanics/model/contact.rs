@@ -521,22 +521,10 @@ impl Feature {
             Measure::Spheres => p[0].max(0.0).sqrt(),
             Measure::PointSegment { l2 } => point_segment_d2(l2, p).0.max(0.0).sqrt(),
             Measure::Segments { la2, lb2 } => segments_d2(la2, lb2, p).0.max(0.0).sqrt(),
-            Measure::PointBox { half } => {
-                let xi = Vec3::new(p[0], p[1], p[2]);
-                let clamped = Vec3::new(
-                    xi.x.clamp(-half.x, half.x),
-                    xi.y.clamp(-half.y, half.y),
-                    xi.z.clamp(-half.z, half.z),
-                );
-                let out = (xi - clamped).norm();
-                if out > 0.0 {
-                    out
-                } else {
-                    -(0..3)
-                        .map(|i| half[i] - xi[i].abs())
-                        .fold(f64::INFINITY, f64::min)
-                }
-            }
+            Measure::PointBox { half } => match box_side(&half, &Vec3::new(p[0], p[1], p[2])) {
+                BoxSide::Outside(o) => o.norm(),
+                BoxSide::Inside(_, depth) => -depth,
+            },
         }
     }
 
@@ -572,25 +560,17 @@ impl Feature {
             }
             Measure::PointBox { half } => {
                 let xi = Vec3::new(p[0], p[1], p[2]);
-                let clamped = Vec3::new(
-                    xi.x.clamp(-half.x, half.x),
-                    xi.y.clamp(-half.y, half.y),
-                    xi.z.clamp(-half.z, half.z),
-                );
-                let out = (xi - clamped).norm();
-                if out > 0.0 {
-                    let g = (xi - clamped) / out;
-                    [g.x, g.y, g.z, 0.0]
-                } else {
+                match box_side(&half, &xi) {
+                    BoxSide::Outside(o) => {
+                        let g = o / o.norm();
+                        [g.x, g.y, g.z, 0.0]
+                    }
                     // inside: minus the depth below the nearest face
-                    let i = (0..3)
-                        .min_by(|&a, &b| {
-                            (half[a] - xi[a].abs()).total_cmp(&(half[b] - xi[b].abs()))
-                        })
-                        .unwrap_or(0);
-                    let mut g = [0.0; 4];
-                    g[i] = if xi[i] < 0.0 { -1.0 } else { 1.0 };
-                    g
+                    BoxSide::Inside(i, _) => {
+                        let mut g = [0.0; 4];
+                        g[i] = if xi[i] < 0.0 { -1.0 } else { 1.0 };
+                        g
+                    }
                 }
             }
         }
@@ -654,28 +634,19 @@ impl Feature {
                     self.rows[2].u.eval(qa, qb),
                 ];
                 let world = |v: Vec3| axes[0] * v.x + axes[1] * v.y + axes[2] * v.z;
-                let clamped = Vec3::new(
-                    xi.x.clamp(-half.x, half.x),
-                    xi.y.clamp(-half.y, half.y),
-                    xi.z.clamp(-half.z, half.z),
-                );
-                if (xi - clamped).norm() > 0.0 {
-                    (c, o + world(clamped), Vec3::z())
-                } else {
-                    // inside: out through the nearest face
-                    let i = (0..3)
-                        .min_by(|&a, &b| {
-                            (half[a] - xi[a].abs()).total_cmp(&(half[b] - xi[b].abs()))
-                        })
-                        .unwrap_or(0);
-                    let mut face = xi;
-                    face[i] = half[i] * xi[i].signum();
-                    let pb = o + world(face);
-                    let mut e = Vec3::zeros();
-                    e[i] = -xi[i].signum();
-                    let n = world(e);
-                    let n = n / n.norm().max(1e-300);
-                    return (c, pb, n);
+                match box_side(&half, &xi) {
+                    BoxSide::Outside(off) => (c, o + world(xi - off), Vec3::z()),
+                    BoxSide::Inside(i, _) => {
+                        // inside: out through the nearest face
+                        let mut face = xi;
+                        face[i] = half[i] * xi[i].signum();
+                        let pb = o + world(face);
+                        let mut e = Vec3::zeros();
+                        e[i] = -xi[i].signum();
+                        let n = world(e);
+                        let n = n / n.norm().max(1e-300);
+                        return (c, pb, n);
+                    }
                 }
             }
         };
@@ -689,6 +660,32 @@ impl Feature {
         };
         (pa, pb, n)
     }
+}
+
+/// Where a point `xi` (box axes, relative to the centre) lies against a box of half edges
+/// `half`.
+enum BoxSide {
+    /// Outside: the point less the nearest point of the box (not zero).
+    Outside(Vec3),
+    /// Inside or on the surface: the axis of the nearest face and the depth below it (≥ 0).
+    Inside(usize, f64),
+}
+
+/// Where `xi` lies against the box of half edges `half` ([`BoxSide`]).
+fn box_side(half: &Vec3, xi: &Vec3) -> BoxSide {
+    let clamped = Vec3::new(
+        xi.x.clamp(-half.x, half.x),
+        xi.y.clamp(-half.y, half.y),
+        xi.z.clamp(-half.z, half.z),
+    );
+    let out = xi - clamped;
+    if out.norm() > 0.0 {
+        return BoxSide::Outside(out);
+    }
+    let i = (0..3)
+        .min_by(|&a, &b| (half[a] - xi[a].abs()).total_cmp(&(half[b] - xi[b].abs())))
+        .unwrap_or(0);
+    BoxSide::Inside(i, half[i] - xi[i].abs())
 }
 
 /// The nearest parameter `t ∈ [−½, ½]` on a segment `m + t v` (`|v|² = l2`) of a point `c`,
