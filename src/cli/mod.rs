@@ -11,6 +11,7 @@ mod overrides;
 mod plot;
 mod select;
 mod simulate;
+mod start_gap;
 
 use std::path::PathBuf;
 use std::process::ExitCode;

@@ -38,6 +38,8 @@ pub struct Outcome {
     /// Where each `[[collision]]` came from (`--contacts`), in the spec's order: the URDF
     /// element, its line and the body it was merged into.
     pub collisions: Vec<String>,
+    /// `--on-ground`: the floating base whose initial `position` was moved, and why.
+    pub placed: Option<(String, String)>,
 }
 
 /// Lowers `robot` to a spec; `problems` collects what makes that impossible.

@@ -31,6 +31,9 @@
 //! - `--contacts` (`contacts`): `<collision>` spheres, boxes and cylinders become
 //!   `[[collision]]` shapes named after their links, on their host bodies, and a `[ground]` is
 //!   added; meshes and shapes of links welded to the world are left out with a note;
+//! - `--on-ground` (`on_ground`, with a floating base and `--contacts`): the base's initial
+//!   `position` is moved against gravity so that the lowest collision shape at the initial pose
+//!   rests on the ground (`on_ground`), with a note and a comment in the written TOML;
 //! - not modelled, each reported as a note: `<dynamics friction>` (inactive), `<mimic>` (the
 //!   joints are independent; a `<mimic>` of a joint that does not exist is an error);
 //! - names that are not identifiers are made identifiers deterministically (`names`), the
@@ -43,6 +46,7 @@ mod contacts;
 mod lower;
 mod mass;
 mod names;
+mod on_ground;
 mod options;
 mod robot;
 mod write;
@@ -76,8 +80,11 @@ pub fn import(
     let name = std::path::Path::new(origin)
         .file_name()
         .map_or_else(|| origin.to_string(), |f| f.to_string_lossy().into_owned());
-    let (spec, mut outcome) = lower::spec(&robot, opts, &name, &mut problems);
+    let (mut spec, mut outcome) = lower::spec(&robot, opts, &name, &mut problems);
     outcome.warnings = warnings;
+    if opts.on_ground && problems.is_empty() {
+        on_ground::place(&mut spec, opts, &mut outcome, &mut problems);
+    }
     if problems.is_empty() {
         Ok((spec, outcome))
     } else {

@@ -71,6 +71,11 @@ pub fn to_toml(spec: &Spec, outcome: &Outcome) -> Result<String, String> {
                         [] => {}
                     }
                 }
+                if let Some((name, why)) = &outcome.placed {
+                    if spec.body.get(b).is_some_and(|body| body.name == *name) {
+                        out.push_str(&format!("# position: {why}\n"));
+                    }
+                }
                 b += 1;
             }
             "[[joint]]" => {
