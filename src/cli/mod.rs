@@ -134,6 +134,9 @@ pub fn run(cli: Cli) -> ExitCode {
         Err(CliError::Spec(e)) => {
             let n = e.problems.len();
             eprintln!("{e}");
+            for note in &e.notes {
+                eprintln!("note: {note}");
+            }
             eprintln!(
                 "error: {} has {n} problem{}",
                 e.origin,

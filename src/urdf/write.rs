@@ -147,6 +147,7 @@ pub fn in_urdf_terms(
         let Ok(i) = index.parse::<usize>() else {
             continue;
         };
+        let is_body = kind == "body";
         let original = match kind {
             "body" => outcome
                 .merged
@@ -171,6 +172,17 @@ pub fn in_urdf_terms(
                 .get(i)
                 .map_or_else(String::new, |l| format!("line {l}: "));
             p.path = format!("{line}{what} \"{name}\" ({})", p.path);
+        }
+        // a free body is welded by the import's options, not by a joint of the URDF
+        let body = is_body.then(|| spec.body.get(i)).flatten();
+        if let Some(how) = body.and_then(|b| {
+            outcome
+                .free_bases
+                .iter()
+                .find(|(n, _)| *n == b.name)
+                .map(|(_, how)| how)
+        }) {
+            p.message = p.message.replace("(a fixed joint)", &format!("({how})"));
         }
     }
     errors
