@@ -292,7 +292,7 @@ pub(super) fn validate(spec: &Spec, origin: &str) -> Result<(), SpecErrors> {
         mechanics(spec, &mut report);
         return report.finish(origin);
     }
-    match salvage::salvage(spec, &report) {
+    match salvage::salvage(spec, &report).filter(|(copy, _)| structure(copy).is_empty()) {
         Some((salvaged, bodies)) => {
             let mut more = Report::default();
             mechanics(&salvaged, &mut more);
