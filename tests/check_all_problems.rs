@@ -75,6 +75,21 @@ fn a_spec_with_problems_in_two_stages_gets_both_in_one_run() {
     ] {
         assert!(err.contains(want), "{want}\n{err}");
     }
+    // a joint's zero axis: the later checks run with the axis z in its place
+    let zero = spec
+        .replace("axis = [0.0, 0.0, 1.0]", "axis = [0.0, 0.0, 0.0]")
+        .replace("mass = -0.5", "mass = 0.5")
+        .replace("[0.001, 0.001, 0.5]", "[0.001, 0.001, 0.001]");
+    std::fs::write(tmp.path().join("zero.toml"), zero).unwrap();
+    let (_, _, err) = run(&["check", "zero.toml"], tmp.path());
+    assert!(
+        err.contains("zero.toml: joint[0].axis: zero length"),
+        "{err}"
+    );
+    assert!(
+        err.contains("body \"mount\" has no mass") && err.contains("has 2 problems"),
+        "{err}"
+    );
 }
 
 #[test]

@@ -283,9 +283,9 @@ pub(crate) const SKIPPED_UNREAD: &str = "further checks skipped: the initial pos
 
 /// Full validation: structure, loop closure at the initial pose, and the mechanics' own set-up.
 /// When the structure has problems, the later checks run on a salvaged copy (`salvage`: a
-/// body's unusable mass, inertia or centre of mass replaced by a placeholder) if one can be
-/// made, leaving out what they say of the bodies given placeholders; otherwise they are
-/// skipped with a note.
+/// body's unusable mass, inertia or centre of mass, a joint's zero axis replaced by a
+/// placeholder) if one can be made, leaving out what they say of the elements given
+/// placeholders; otherwise they are skipped with a note.
 pub(super) fn validate(spec: &Spec, origin: &str) -> Result<(), SpecErrors> {
     let mut report = structure(spec);
     if report.is_empty() {
@@ -293,14 +293,13 @@ pub(super) fn validate(spec: &Spec, origin: &str) -> Result<(), SpecErrors> {
         return report.finish(origin);
     }
     match salvage::salvage(spec, &report).filter(|(copy, _)| structure(copy).is_empty()) {
-        Some((salvaged, bodies)) => {
+        Some((salvaged, elements)) => {
             let mut more = Report::default();
             mechanics(&salvaged, &mut more);
             let placeholder = |path: &str| {
-                bodies.iter().any(|i| {
-                    let b = format!("body[{i}]");
-                    path == b || path.starts_with(&format!("{b}."))
-                })
+                elements
+                    .iter()
+                    .any(|e| path == e || path.starts_with(&format!("{e}.")))
             };
             report
                 .problems

@@ -387,7 +387,7 @@ fn joint(e: &Element, problems: &mut Vec<Problem>) -> Option<Joint> {
     };
     let parent = link_of("parent", problems);
     let child = link_of("child", problems);
-    let axis = e.first("axis").map_or([1.0, 0.0, 0.0], |a| {
+    let mut axis = e.first("axis").map_or([1.0, 0.0, 0.0], |a| {
         numbers(a, "xyz", [1.0, 0.0, 0.0], &whose, problems)
     });
     let moving = matches!(
@@ -398,6 +398,8 @@ fn joint(e: &Element, problems: &mut Vec<Problem>) -> Option<Joint> {
     );
     if moving && axis.iter().all(|&x| x == 0.0) {
         problems.push(Problem::new(at(e.line, &whose), "<axis> has zero length"));
+        // the default axis as a placeholder, so that the later checks still run
+        axis = [1.0, 0.0, 0.0];
     }
     let (damping, friction) = e.first("dynamics").map_or((0.0, 0.0), |d| {
         (
