@@ -29,9 +29,9 @@ pub struct ImportArgs {
     #[arg(long)]
     pub contacts: bool,
     /// With a floating base and --contacts: start the base at the height where the lowest
-    /// collision shape rests on the ground (its initial position raised or lowered against
-    /// gravity; the joints keep their initial values). By default the base starts where the
-    /// URDF puts it (the origin), often with the feet inside the ground.
+    /// collision shape rests on the ground (its initial position raised or lowered; the joints
+    /// keep their initial values). By default the base starts where the URDF puts it (the
+    /// origin), often with the feet inside the ground.
     #[arg(long)]
     pub on_ground: bool,
 }
