@@ -7,7 +7,7 @@
 #     bash scripts/platforms.sh --dist             # and dist/triad-<version>/ (CLI + runtime/)
 #     TRIAD_DIST_EXE=0 bash scripts/platforms.sh --dist   # the distribution without triad.exe
 #
-# Platforms and their files (the layout `triad build` reads, README "Platforms"):
+# Platforms and their files (the layout `triad build` reads, docs/guide/platforms.md):
 #   linux64/libtriad.so        x86_64 Linux, glibc >= 2.17   cargo-zigbuild, rustup's toolchain
 #   win64/triad.dll            x86_64 Windows                Debian's rustc 1.96 + build-std, mingw-w64
 #   darwin64/libtriad.dylib    macOS x86_64 (>= 10.12) + arm64 (>= 11.0), one universal file
@@ -148,7 +148,9 @@ if [ "$DIST" = 1 ]; then
     install -m 755 target/x86_64-pc-windows-gnu/release/triad.exe "$dist/triad.exe"
   fi
   cp -r "$OUT" "$dist/runtime"
-  cp README.md "$dist/README.md"
+  # the README with what it links to: the guide, its pictures, ARCHITECTURE and BENCHMARKS
+  cp README.md ARCHITECTURE.md BENCHMARKS.md "$dist/"
+  mkdir -p "$dist/docs" && cp -r docs/guide docs/*.png "$dist/docs/"
   echo "platforms: wrote $dist"
   ls -lR "$dist" | sed -n '1,40p'
 fi

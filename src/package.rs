@@ -124,7 +124,8 @@ pub fn fmu_bytes_at(
     let host = Binary {
         folder: PLATFORM.to_string(),
         ext,
-        label: platforms::label(platforms::Platform::host(), PLATFORM),
+        label: platforms::label(platforms::Platform::host(), PLATFORM, cdylib).0,
+        unreadable: None,
         source: PathBuf::new(),
         bytes: cdylib.to_vec(),
     };

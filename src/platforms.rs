@@ -6,11 +6,15 @@
 //!
 //! | platform | file | FMU folder |
 //! |---|---|---|
-//! | `linux64` | `linux64/libtriad.so` (x86_64, glibc ≥ 2.17) | `binaries/linux64` |
+//! | `linux64` | `linux64/libtriad.so` (x86_64; glibc ≥ 2.17 from `scripts/platforms.sh`) | `binaries/linux64` |
 //! | `win64` | `win64/triad.dll` | `binaries/win64` |
 //! | `darwin64` | `darwin64/libtriad.dylib` (x86_64 + arm64) | `binaries/darwin64` |
-//! | `aarch64-linux` | `aarch64-linux/libtriad.so` (glibc ≥ 2.17) | `binaries/aarch64-linux` (the FMI 3 name) |
+//! | `aarch64-linux` | `aarch64-linux/libtriad.so` (glibc ≥ 2.17 from `scripts/platforms.sh`) | `binaries/aarch64-linux` (the FMI 3 name) |
 //! | `linux64-aarch64` | the same aarch64 file | `binaries/linux64`, for FMI 2 importers on ARM boards |
+//!
+//! Each binary is labelled by what it needs, read from the binary itself (`needs`: the highest
+//! glibc version an ELF file's symbols need, a Mach-O slice's minimum macOS, a PE file's
+//! Windows version): a host build needs the host's glibc, not 2.17.
 //!
 //! The directory is `$TRIAD_RUNTIME_DIR`, else `runtime/` beside the `triad` executable, else
 //! `../runtime/` (so `target/release/triad` finds `target/runtime/`). The host's binary is
@@ -24,6 +28,10 @@
 //! or `all`, is an error naming the command that rebuilds it.
 
 use std::path::{Path, PathBuf};
+
+mod needs;
+
+pub use needs::needs;
 
 /// FMI platform folder of this build (`linux64`, `win64`, `darwin64`, …).
 pub const PLATFORM: &str = env!("TRIAD_FMI_PLATFORM");
@@ -90,13 +98,14 @@ pub fn find_cdylib() -> Result<PathBuf, String> {
 /// A platform of the runtime directory (and of `triad build --platforms`).
 #[derive(Clone, Copy, Debug, PartialEq, Eq, PartialOrd, Ord)]
 pub enum Platform {
-    /// x86_64 Linux, glibc ≥ 2.17.
+    /// x86_64 Linux (glibc ≥ 2.17 when built by `scripts/platforms.sh`).
     Linux64,
     /// x86_64 Windows.
     Win64,
     /// macOS, one universal x86_64 + arm64 file.
     Darwin64,
-    /// aarch64 Linux, glibc ≥ 2.17, in the FMI 3 folder `aarch64-linux`.
+    /// aarch64 Linux (glibc ≥ 2.17 when built by `scripts/platforms.sh`), in the FMI 3 folder
+    /// `aarch64-linux`.
     Aarch64Linux,
     /// The aarch64 Linux binary in `linux64`: what FMI 2 importers on ARM boards load.
     Linux64Aarch64,
@@ -160,15 +169,25 @@ impl Platform {
         }
     }
 
-    /// What the binary runs on.
+    /// The system the platform's binary is built for (what it needs beyond that is read from
+    /// the binary: [`needs`]).
     #[must_use]
     pub fn describe(self) -> &'static str {
         match self {
-            Self::Linux64 => "x86_64 Linux, glibc >= 2.17",
+            Self::Linux64 => "x86_64 Linux",
             Self::Win64 => "x86_64 Windows",
-            Self::Darwin64 => "macOS x86_64 >= 10.12 and arm64 >= 11.0",
-            Self::Aarch64Linux => "aarch64 Linux, glibc >= 2.17 (FMI 3 folder name)",
-            Self::Linux64Aarch64 => "aarch64 Linux, glibc >= 2.17, for FMI 2 importers on ARM",
+            Self::Darwin64 => "macOS x86_64 + arm64",
+            Self::Aarch64Linux | Self::Linux64Aarch64 => "aarch64 Linux",
+        }
+    }
+
+    /// What the label adds about the folder: `""`, or why this folder.
+    #[must_use]
+    pub fn note(self) -> &'static str {
+        match self {
+            Self::Aarch64Linux => " (FMI 3 folder name)",
+            Self::Linux64Aarch64 => ", for FMI 2 importers on ARM",
+            _ => "",
         }
     }
 
@@ -239,8 +258,10 @@ pub struct Binary {
     pub folder: String,
     /// Library extension (`so`, `dll`, `dylib`).
     pub ext: &'static str,
-    /// The `--platforms` name, with what it runs on.
+    /// The `--platforms` name, with what it runs on (read from the binary: [`label`]).
     pub label: String,
+    /// Why what the binary needs could not be read (a warning; the label says `unknown`).
+    pub unreadable: Option<String>,
     /// Where it was read from.
     pub source: PathBuf,
     /// Its bytes.
@@ -265,13 +286,17 @@ pub fn runtime_dir() -> Option<PathBuf> {
     .find(|d| d.is_dir())
 }
 
-/// How the documentation names a binary: the platform and what it runs on.
+/// How `triad build` and the documentation name a binary: the platform and what the binary
+/// needs, read from `bytes` ([`needs`]: `linux64 (x86_64 Linux, glibc >= 2.35)`); and a
+/// warning when that cannot be read (the label then says `unknown`).
 #[must_use]
-pub fn label(platform: Option<Platform>, folder: &str) -> String {
-    platform.map_or_else(
-        || format!("{folder} (this build)"),
-        |p| format!("{} ({})", p.name(), p.describe()),
-    )
+pub fn label(platform: Option<Platform>, folder: &str, bytes: &[u8]) -> (String, Option<String>) {
+    let name = platform.map_or_else(|| format!("{folder}, this build"), |p| p.name().to_string());
+    let note = platform.map_or("", Platform::note);
+    match needs(bytes) {
+        Ok(what) => (format!("{name} ({what}{note})"), None),
+        Err(why) => (format!("{name} (unknown{note})"), Some(why)),
+    }
 }
 
 /// The runtime id in a runtime binary's bytes (the 16 hex digits after `triad-runtime-id:`),
@@ -312,11 +337,17 @@ fn read(
     path: &Path,
 ) -> Result<Binary, String> {
     let bytes = std::fs::read(path).map_err(|e| format!("{}: {e}", path.display()))?;
-    let label = label(platform, folder);
+    let (label, unreadable) = label(platform, folder, &bytes);
     Ok(Binary {
         folder: folder.to_string(),
         ext,
         label,
+        unreadable: unreadable.map(|why| {
+            format!(
+                "warning: what {} needs to run cannot be read: {why}; labelled unknown",
+                path.display()
+            )
+        }),
         source: path.to_path_buf(),
         bytes,
     })
@@ -441,6 +472,7 @@ pub fn collect(
         out.push(binary);
     }
     out.sort_by(|a, b| a.folder.cmp(&b.folder));
+    notes.extend(out.iter().filter_map(|b| b.unreadable.clone()));
     Ok((out, notes))
 }
 

@@ -419,3 +419,38 @@ impl Simulation {
         Ok(true)
     }
 }
+
+/// A gap to the ground within this of zero is touching, not below the ground, m.
+pub const TOUCHING: f64 = 1e-9;
+
+/// A collision shape below the ground ([`Simulation::below_ground`]).
+#[derive(Clone, Debug, PartialEq)]
+pub struct BelowGround {
+    /// The shape's index among the model's collision shapes (`def().contact.shapes`).
+    pub shape: usize,
+    /// How far its lowest point is below the ground, m (more than [`TOUCHING`]).
+    pub depth: f64,
+}
+
+impl Simulation {
+    /// The collision shapes whose gap to the ground (`contact.C.gap`) is below `-TOUCHING` at
+    /// the current state, deepest first: right after [`Simulation::new`], the shapes that start
+    /// inside the ground (their contact springs then push with `k · depth` at the first step).
+    #[must_use]
+    pub fn below_ground(&self) -> Vec<BelowGround> {
+        let mut below: Vec<BelowGround> = self
+            .state
+            .outputs()
+            .contacts
+            .iter()
+            .enumerate()
+            .filter(|(_, c)| c.gap < -TOUCHING)
+            .map(|(shape, c)| BelowGround {
+                shape,
+                depth: -c.gap,
+            })
+            .collect();
+        below.sort_by(|a, b| b.depth.total_cmp(&a.depth));
+        below
+    }
+}

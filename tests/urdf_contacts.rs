@@ -26,6 +26,7 @@ const CONTACTS: ImportOptions = ImportOptions {
     keep_fixed: false,
     no_limits: false,
     contacts: true,
+    on_ground: false,
 };
 
 /// Runs triad in `dir`: (success, stdout, stderr), after checking nothing panicked.

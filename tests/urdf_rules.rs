@@ -33,6 +33,7 @@ const KEEP: ImportOptions = ImportOptions {
     keep_fixed: true,
     no_limits: false,
     contacts: false,
+    on_ground: false,
 };
 
 /// Runs triad in `dir`: (success, stdout, stderr), after checking nothing panicked.

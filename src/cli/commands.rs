@@ -2,12 +2,13 @@
 
 use std::path::{Path, PathBuf};
 
-use triad::mechanics::Model;
+use triad::sim::Simulation;
 use triad::variables::{Causality, VarType, VariableTable};
 
 use super::error::CliError;
 use super::import_args::ImportArgs;
 use super::load::{is_urdf, load, load_noted, load_urdf, no_import_options};
+use super::start_gap;
 
 /// Prints a note on standard output: `note: …`, or as it is when it is a warning (`warning: …`).
 fn print_note(note: &str) {
@@ -23,7 +24,9 @@ fn print_note(note: &str) {
 pub fn check(model: &str, urdf: &ImportArgs) -> Result<(), CliError> {
     let (spec, import_notes) = load_noted(model, urdf)?;
     let (def, settings) = spec.lower()?;
-    let built = Model::new(&def, settings).map_err(|e| format!("{model}: {e}"))?;
+    let sim = Simulation::new(&def, settings, spec.experiment.start)
+        .map_err(|e| format!("{model}: {e}"))?;
+    let built = sim.model();
     let table = VariableTable::new(&def, &settings).with_labels(&spec.labels());
     let count = |c: Causality| table.with_causality(c).count();
     let origin = if std::path::Path::new(model).exists() {
@@ -44,6 +47,9 @@ pub fn check(model: &str, urdf: &ImportArgs) -> Result<(), CliError> {
     );
     for note in import_notes.iter().chain(built.notes()) {
         print_note(note);
+    }
+    if let Some(warning) = start_gap::for_model(&sim, model, urdf) {
+        print_note(&warning);
     }
     Ok(())
 }
@@ -161,6 +167,16 @@ pub fn build(
     }
     for note in &built.notes {
         print_note(note);
+    }
+    let start = spec
+        .lower()
+        .ok()
+        .and_then(|(def, settings)| Simulation::new(&def, settings, spec.experiment.start).ok());
+    if let Some(warning) = start
+        .as_ref()
+        .and_then(|sim| start_gap::for_model(sim, &model.to_string_lossy(), urdf))
+    {
+        print_note(&warning);
     }
     println!("wrote {}", built.path.display());
     Ok(())

@@ -28,6 +28,12 @@ pub struct ImportArgs {
     /// the ground (meshes are left out with a note), and add a ground plane at height 0.
     #[arg(long)]
     pub contacts: bool,
+    /// With a floating base and --contacts: start the base at the height where the lowest
+    /// collision shape rests on the ground (its initial position raised or lowered; the joints
+    /// keep their initial values). By default the base starts where the URDF puts it (the
+    /// origin), often with the feet inside the ground.
+    #[arg(long)]
+    pub on_ground: bool,
 }
 
 impl ImportArgs {
@@ -43,6 +49,7 @@ impl ImportArgs {
             keep_fixed: self.keep_fixed,
             no_limits: self.no_limits,
             contacts: self.contacts,
+            on_ground: self.on_ground,
         }
     }
 
@@ -55,6 +62,7 @@ impl ImportArgs {
             (self.keep_fixed, "--keep-fixed"),
             (self.no_limits, "--no-limits"),
             (self.contacts, "--contacts"),
+            (self.on_ground, "--on-ground"),
         ]
         .into_iter()
         .filter_map(|(on, name)| on.then_some(name))

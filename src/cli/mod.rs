@@ -11,6 +11,7 @@ mod overrides;
 mod plot;
 mod select;
 mod simulate;
+mod start_gap;
 
 use std::path::PathBuf;
 use std::process::ExitCode;
@@ -68,7 +69,9 @@ pub enum Command {
     /// library of this build). Only binaries built from this triad's sources are packed (each
     /// carries their runtime id): an out-of-date one is left out with a warning, or is an error
     /// when asked for (the host's is replaced by this build's library). The command prints what
-    /// it packed.
+    /// it packed, each binary labelled by what it needs, read from the binary (the highest glibc
+    /// version its symbols need, each macOS slice's minimum, the Windows version of its header;
+    /// a host build needs the host's glibc).
     Build {
         /// Model spec (.toml or .json) or robot description (.urdf).
         model: PathBuf,
@@ -131,6 +134,9 @@ pub fn run(cli: Cli) -> ExitCode {
         Err(CliError::Spec(e)) => {
             let n = e.problems.len();
             eprintln!("{e}");
+            for note in &e.notes {
+                eprintln!("note: {note}");
+            }
             eprintln!(
                 "error: {} has {n} problem{}",
                 e.origin,

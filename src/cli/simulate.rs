@@ -149,6 +149,9 @@ pub fn run(args: &SimulateArgs) -> Result<(), CliError> {
         .transpose()?;
     let mut sim =
         Simulation::new(&def, settings, start).map_err(|e| format!("{}: {e}", args.model))?;
+    if let Some(warning) = super::start_gap::for_model(&sim, &args.model, &args.urdf) {
+        eprintln!("{warning}");
+    }
     let outputs: Vec<_> = table.with_causality(Causality::Output).collect();
     let columns = select::select(&outputs, &select::patterns(&args.outputs))?;
     let plotted: Vec<usize> = outputs

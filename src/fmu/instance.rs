@@ -333,13 +333,17 @@ impl Instance {
         Ok(sim)
     }
 
-    /// `fmi2ExitInitializationMode`.
+    /// `fmi2ExitInitializationMode`; logs a warning when collision shapes start below the
+    /// ground.
     ///
     /// # Errors
     /// Wrong mode.
     pub fn exit_initialization_mode(&mut self) -> Result<Status, FmuError> {
         self.check(Op::ExitInitializationMode, "fmi2ExitInitializationMode")?;
         self.mode = Mode::StepComplete;
+        if let Some(msg) = self.sim.as_ref().and_then(super::start_gap::below_ground) {
+            self.log(Status::Warning, Category::LogStatusWarning, &msg);
+        }
         Ok(Status::Ok)
     }
 

@@ -28,6 +28,7 @@ mod params;
 pub mod resource;
 pub mod runtime_id;
 pub mod snapshot;
+mod start_gap;
 pub mod status;
 
 pub use capabilities::{Capabilities, CAPABILITIES};

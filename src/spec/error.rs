@@ -35,13 +35,17 @@ impl fmt::Display for Problem {
 }
 
 /// Every problem found in one spec. `Display` prints one line per problem, prefixed by the
-/// origin (the file name): `double_pendulum.toml: joint[1].axis: zero length`.
+/// origin (the file name): `double_pendulum.toml: joint[1].axis: zero length`; the notes
+/// (stages skipped) are not part of it.
 #[derive(Clone, Debug, PartialEq, Eq)]
 pub struct SpecErrors {
     /// File name (or other origin) used in messages.
     pub origin: String,
     /// The problems, in document order where possible. Never empty.
     pub problems: Vec<Problem>,
+    /// What was not checked, and why (`further checks skipped: …`): a stage that cannot run on
+    /// input with these problems.
+    pub notes: Vec<String>,
 }
 
 impl SpecErrors {
@@ -51,7 +55,15 @@ impl SpecErrors {
         Self {
             origin: origin.to_string(),
             problems: vec![Problem::new(path, message)],
+            notes: Vec::new(),
         }
+    }
+
+    /// These errors with the note `note` (a stage skipped, and why).
+    #[must_use]
+    pub fn noting(mut self, note: impl Into<String>) -> Self {
+        self.notes.push(note.into());
+        self
     }
 }
 
@@ -73,6 +85,8 @@ impl std::error::Error for SpecErrors {}
 #[derive(Debug, Default)]
 pub(crate) struct Report {
     pub(crate) problems: Vec<Problem>,
+    /// Stages skipped, and why.
+    pub(crate) notes: Vec<String>,
 }
 
 impl Report {
@@ -94,6 +108,7 @@ impl Report {
             Err(SpecErrors {
                 origin: origin.to_string(),
                 problems: self.problems,
+                notes: self.notes,
             })
         }
     }
@@ -138,6 +153,7 @@ mod tests {
                 Problem::new("joint[1].axis", "zero length"),
                 Problem::new("", "empty"),
             ],
+            notes: Vec::new(),
         };
         assert_eq!(
             e.to_string(),

@@ -21,6 +21,7 @@ axis = [0, 1]
     let e = SpecErrors {
         origin: "m.toml".into(),
         problems: p.problems,
+        notes: Vec::new(),
     }
     .to_string();
     for want in [

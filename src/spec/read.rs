@@ -61,6 +61,7 @@ impl Spec {
                 Err(SpecErrors {
                     origin: origin.to_string(),
                     problems,
+                    notes: vec![validate::SKIPPED_UNREAD.to_string()],
                 })
             }
         }

@@ -14,6 +14,7 @@ use common::check_finite;
 mod common;
 mod contact;
 mod joints;
+mod salvage;
 
 /// Largest loop-closure violation accepted at the initial pose, m or 1: the mechanics' own
 /// tolerance, so that the spec check and `Model::new` agree.
@@ -275,12 +276,49 @@ pub(crate) fn structure(spec: &Spec) -> Report {
     report
 }
 
+/// The note of a spec that could not be read whole (syntax or shape problems).
+pub(crate) const SKIPPED_UNREAD: &str = "further checks skipped: the initial pose (loop \
+    closure) and the mechanics' checks (determinacy of bodies without mass) need the whole \
+    spec read; fix the problems above, then check again";
+
 /// Full validation: structure, loop closure at the initial pose, and the mechanics' own set-up.
+/// When the structure has problems, the later checks run on a salvaged copy (`salvage`: a
+/// body's unusable mass, inertia or centre of mass, a joint's zero axis replaced by a
+/// placeholder) if one can be made, leaving out what they say of the elements given
+/// placeholders; otherwise they are skipped with a note.
 pub(super) fn validate(spec: &Spec, origin: &str) -> Result<(), SpecErrors> {
     let mut report = structure(spec);
-    if !report.is_empty() {
+    if report.is_empty() {
+        mechanics(spec, &mut report);
         return report.finish(origin);
     }
+    match salvage::salvage(spec, &report).filter(|(copy, _)| structure(copy).is_empty()) {
+        Some((salvaged, elements)) => {
+            let mut more = Report::default();
+            mechanics(&salvaged, &mut more);
+            let placeholder = |path: &str| {
+                elements
+                    .iter()
+                    .any(|e| path == e || path.starts_with(&format!("{e}.")))
+            };
+            report
+                .problems
+                .extend(more.problems.into_iter().filter(|p| !placeholder(&p.path)));
+            report.notes.extend(more.notes);
+        }
+        None => report.notes.push(
+            "further checks skipped: the initial pose (loop closure) and the mechanics' checks \
+             (determinacy of bodies without mass) need a consistent spec; fix the problems \
+             above, then check again"
+                .into(),
+        ),
+    }
+    report.finish(origin)
+}
+
+/// The checks on a consistent spec: loop closure at the initial pose, then the mechanics' own
+/// set-up (`Model::new`: determinacy of bodies without mass, redundant loops).
+fn mechanics(spec: &Spec, report: &mut Report) {
     let (def, settings) = lower::build(spec);
     for (k, residual) in kinematics::loop_residuals(&def) {
         if residual.is_nan() || residual > LOOP_TOLERANCE {
@@ -292,28 +330,33 @@ pub(super) fn validate(spec: &Spec, origin: &str) -> Result<(), SpecErrors> {
             );
         }
     }
-    if report.is_empty() {
-        if let Err(e) = Model::new(&def, settings) {
-            match &e {
-                ModelError::LoopNotClosed { joint, residual } => {
-                    let i = spec
-                        .joint_index(joint)
-                        .map_or(String::from("joint"), |i| format!("joint[{i}]"));
-                    report.push(i, format!("loop-closing joint \"{joint}\" is violated by the initial pose by {residual:.3e}: choose the tree joints' initial q so that the loop closes"));
-                }
-                ModelError::Undetermined { body, why } => {
-                    let i = spec
-                        .body
-                        .iter()
-                        .position(|b| b.name == *body)
-                        .map_or(String::from("body"), |i| format!("body[{i}]"));
-                    report.push(i, format!("body \"{body}\" {why}"));
-                }
-                other => report.push("", format!("the mechanics rejected the model: {other}")),
+    if !report.is_empty() {
+        report.notes.push(
+            "further checks skipped: the mechanics' checks (determinacy of bodies without mass) \
+             need the loops closed at the initial pose"
+                .into(),
+        );
+        return;
+    }
+    if let Err(e) = Model::new(&def, settings) {
+        match &e {
+            ModelError::LoopNotClosed { joint, residual } => {
+                let i = spec
+                    .joint_index(joint)
+                    .map_or(String::from("joint"), |i| format!("joint[{i}]"));
+                report.push(i, format!("loop-closing joint \"{joint}\" is violated by the initial pose by {residual:.3e}: choose the tree joints' initial q so that the loop closes"));
             }
+            ModelError::Undetermined { body, why } => {
+                let i = spec
+                    .body
+                    .iter()
+                    .position(|b| b.name == *body)
+                    .map_or(String::from("body"), |i| format!("body[{i}]"));
+                report.push(i, format!("body \"{body}\" {why}"));
+            }
+            other => report.push("", format!("the mechanics rejected the model: {other}")),
         }
     }
-    report.finish(origin)
 }
 
 #[cfg(test)]

@@ -38,6 +38,14 @@ pub struct Outcome {
     /// Where each `[[collision]]` came from (`--contacts`), in the spec's order: the URDF
     /// element, its line and the body it was merged into.
     pub collisions: Vec<String>,
+    /// Every free body (floating base) and how the import would weld it to the world
+    /// (`drop --floating-base`, `import with --fixed-base`): for messages about it.
+    pub free_bases: Vec<(String, String)>,
+    /// Why the import stopped before the robot's tree was known (the checks after it, on the
+    /// spec, could not run): set with the problems that stopped it.
+    pub skipped: Option<String>,
+    /// `--on-ground`: the floating base whose initial `position` was moved, and why.
+    pub placed: Option<(String, String)>,
 }
 
 /// Lowers `robot` to a spec; `problems` collects what makes that impossible.
@@ -49,6 +57,9 @@ pub(crate) fn spec(
     problems: &mut Vec<Problem>,
 ) -> (Spec, Outcome) {
     let mut out = Outcome::default();
+    // the problems of the robot's values (with placeholders) do not stop the lowering; those
+    // of its tree do
+    let before = problems.len();
     let mut link_at: HashMap<&str, usize> = HashMap::new();
     for (i, l) in robot.links.iter().enumerate() {
         if let Some(&first) = link_at.get(l.name.as_str()) {
@@ -166,16 +177,18 @@ pub(crate) fn spec(
         [_] => {}
         [] if robot.links.is_empty() => {
             problems.push(Problem::new("", "the robot has no <link>"));
+            out.skipped = Some("the robot has no link".into());
             return (empty, out);
         }
         [] => {
             // every link has a parent joint: `cycles` has named the cycles
-            if problems.is_empty() {
+            if problems.len() == before {
                 problems.push(Problem::new(
                     "",
                     "every link has a parent joint: the joints form a cycle",
                 ));
             }
+            out.skipped = Some("the links and joints do not form one tree".into());
             return (empty, out);
         }
         many => {
@@ -191,10 +204,12 @@ pub(crate) fn spec(
                     names.join(", ")
                 ),
             ));
+            out.skipped = Some("the links and joints do not form one tree".into());
             return (empty, out);
         }
     }
-    if !problems.is_empty() {
+    if problems.len() > before {
+        out.skipped = Some("the links and joints do not form one tree".into());
         return (empty, out);
     }
     let root = roots[0];
@@ -252,6 +267,8 @@ pub(crate) fn spec(
     } else {
         let b = new_body(&mut spec, &mut parts, root, &mut out);
         spec.body[b].position = Some([0.0; 3]);
+        out.free_bases
+            .push((spec.body[b].name.clone(), "drop --floating-base".into()));
         host[root] = Some(Placement {
             body: Some(b),
             frame: Iso::IDENTITY,
@@ -307,6 +324,12 @@ pub(crate) fn spec(
             let Some(kind) = kind else {
                 // the base is free: a floating body placed at the joint's origin
                 let b = new_body(&mut spec, &mut parts, cl, &mut out);
+                let how = if j.kind == JointType::Floating {
+                    "import with --fixed-base"
+                } else {
+                    "drop --floating-base"
+                };
+                out.free_bases.push((spec.body[b].name.clone(), how.into()));
                 let o = frame.origin(written);
                 spec.body[b].position = Some(o.xyz);
                 let r = rpy_to_matrix(&Vec3::from(o.rpy));
@@ -421,7 +444,8 @@ pub(crate) fn spec(
     }
     // (kept links welded to the world are bodies, but they do not move either)
     let moving = host.iter().flatten().any(|p| p.cluster.is_some());
-    if !moving && problems.is_empty() {
+    if !moving && problems.len() == before {
+        out.skipped = Some("every link is welded to the world".into());
         let r = &robot.links[root];
         problems.push(Problem::new(
             at(r.line, &format!("link \"{}\"", r.name)),
@@ -432,7 +456,7 @@ pub(crate) fn spec(
         ));
     }
     // the inertials, each in the frame of the body that carries it
-    if problems.is_empty() {
+    if problems.len() == before {
         distribute(
             robot,
             &host,
@@ -460,7 +484,7 @@ pub(crate) fn spec(
             ));
         }
     }
-    if opts.contacts && problems.is_empty() {
+    if opts.contacts && problems.len() == before {
         let added = super::contacts::add(robot, &host, &out.merged, &mut spec);
         out.notes.extend(added.notes);
         out.collisions = added.sources;

@@ -2,7 +2,7 @@
 //! command then treats like a spec file (`triad check|describe|simulate|build robot.urdf`), and
 //! which `triad import` writes out as editable TOML.
 //!
-//! Semantics chosen (README, "Bring your robot"):
+//! Semantics chosen (docs/guide/bring-your-robot.md):
 //! - the root link: a root named `world` is the world (a `fixed` joint below it welds the base,
 //!   a `floating` joint frees it); any other root is the base, welded to the world by default
 //!   (as Pinocchio and MuJoCo do). `--floating-base` frees the base, `--fixed-base` welds a base
@@ -31,6 +31,9 @@
 //! - `--contacts` (`contacts`): `<collision>` spheres, boxes and cylinders become
 //!   `[[collision]]` shapes named after their links, on their host bodies, and a `[ground]` is
 //!   added; meshes and shapes of links welded to the world are left out with a note;
+//! - `--on-ground` (`on_ground`, with a floating base and `--contacts`): the base's initial
+//!   `position` is moved against gravity so that the lowest collision shape at the initial pose
+//!   rests on the ground (`on_ground`), with a note and a comment in the written TOML;
 //! - not modelled, each reported as a note: `<dynamics friction>` (inactive), `<mimic>` (the
 //!   joints are independent; a `<mimic>` of a joint that does not exist is an error);
 //! - names that are not identifiers are made identifiers deterministically (`names`), the
@@ -43,6 +46,7 @@ mod contacts;
 mod lower;
 mod mass;
 mod names;
+mod on_ground;
 mod options;
 mod robot;
 mod write;
@@ -55,7 +59,11 @@ pub use write::{in_urdf_terms, to_toml};
 use crate::spec::{Problem, Spec, SpecErrors};
 
 /// Reads URDF text into a spec. `origin` (the file name) prefixes every message and goes into
-/// the spec's description. The spec is not validated here (`Spec::from_path` does that).
+/// the spec's description. The spec is not validated here when the URDF has no problem
+/// (`Spec::validate` does that); when it has some, the checks after them still run on what can
+/// be salvaged (a link's missing `<inertia>` replaced by a placeholder, the spec's own
+/// validation in the URDF's terms), so that one run reports every problem; a stage that cannot
+/// run is named in a note of the errors.
 ///
 /// # Errors
 /// Every problem found, each with its line and element.
@@ -67,20 +75,67 @@ pub fn import(
     let fail = |problems: Vec<Problem>| SpecErrors {
         origin: origin.to_string(),
         problems,
+        notes: Vec::new(),
     };
     let root = xml::parse(text)
         .map_err(|(line, msg)| fail(vec![Problem::new(format!("line {line}"), msg)]))?;
     let mut problems = Vec::new();
     let mut warnings = Vec::new();
     let robot = robot::robot(&root, &mut problems, &mut warnings);
+    if !robot.dropped.is_empty() {
+        return Err(fail(problems).noting(format!(
+            "further checks skipped: {} could not be read ({}), so the tree of links and \
+             joints is not known; fix the problems above, then check again",
+            if robot.dropped.len() == 1 {
+                "an element"
+            } else {
+                "elements"
+            },
+            robot.dropped.join(", ")
+        )));
+    }
     let name = std::path::Path::new(origin)
         .file_name()
         .map_or_else(|| origin.to_string(), |f| f.to_string_lossy().into_owned());
-    let (spec, mut outcome) = lower::spec(&robot, opts, &name, &mut problems);
+    let (mut spec, mut outcome) = lower::spec(&robot, opts, &name, &mut problems);
     outcome.warnings = warnings;
-    if problems.is_empty() {
-        Ok((spec, outcome))
-    } else {
-        Err(fail(problems))
+    if let Some(why) = &outcome.skipped {
+        return Err(fail(problems).noting(format!(
+            "further checks skipped: {why}; fix the problems above, then check again"
+        )));
     }
+    if opts.on_ground && problems.is_empty() {
+        on_ground::place(&mut spec, opts, &mut outcome, &mut problems);
+    }
+    if problems.is_empty() {
+        return Ok((spec, outcome));
+    }
+    // the later stages on the salvaged spec: what they find of elements that already have a
+    // problem follows from it (a placeholder, a repeated value) and is left out
+    let mut errors = fail(problems);
+    if let Err(later) = spec.validate(origin) {
+        let later = in_urdf_terms(later, &spec, &outcome);
+        let named: Vec<String> = errors
+            .problems
+            .iter()
+            .filter_map(|p| element(&p.path))
+            .collect();
+        errors.problems.extend(
+            later
+                .problems
+                .into_iter()
+                .filter(|p| element(&p.path).is_none_or(|e| !named.contains(&e))),
+        );
+        errors.notes.extend(later.notes);
+    }
+    Err(errors)
+}
+
+/// The URDF element a problem's path names: `link "arm"` of `line 7: link "arm" (body[1])`.
+fn element(path: &str) -> Option<String> {
+    let at = path.find("link \"").or_else(|| path.find("joint \""))?;
+    let rest = &path[at..];
+    let open = rest.find('"')?;
+    let close = rest[open + 1..].find('"')? + open + 1;
+    Some(rest[..=close].to_string())
 }

@@ -24,4 +24,8 @@ pub struct ImportOptions {
     /// Turn the links' `<collision>` spheres, boxes and cylinders into collision shapes
     /// (`[[collision]]`) and add a ground plane (`[ground]`, the defaults, height 0).
     pub contacts: bool,
+    /// Place the floating base (with `contacts`) so that the lowest collision shape at the
+    /// initial pose rests on the ground (gap 0): its initial `position` is raised or lowered
+    /// against gravity. Without a floating base or without `contacts`, a problem.
+    pub on_ground: bool,
 }

@@ -103,6 +103,9 @@ pub(crate) struct Robot {
     pub name: String,
     pub links: Vec<Link>,
     pub joints: Vec<Joint>,
+    /// The elements left out because they could not be read (`line 12: <joint>`): with any,
+    /// the tree the links and joints form is not known.
+    pub dropped: Vec<String>,
 }
 
 /// Where a problem is: `line L: <what>`.
@@ -318,10 +321,16 @@ fn inertial(e: &Element, whose: &str, problems: &mut Vec<Problem>) -> Inertial {
                 inertia[k] = number(i, key, whose, problems).unwrap_or(0.0);
             }
         }
-        None if mass > 0.0 => problems.push(Problem::new(
-            at(e.line, whose),
-            "<inertial> has a mass but no <inertia>",
-        )),
+        None if mass > 0.0 => {
+            problems.push(Problem::new(
+                at(e.line, whose),
+                "<inertial> has a mass but no <inertia>",
+            ));
+            // a placeholder for the later checks (a uniform sphere of 0.1 m radius), so that
+            // they report the robot's other problems in the same run
+            let j = 0.4 * mass * 0.01;
+            inertia = [j, j, j, 0.0, 0.0, 0.0];
+        }
         None => {}
     }
     Inertial {
@@ -378,7 +387,7 @@ fn joint(e: &Element, problems: &mut Vec<Problem>) -> Option<Joint> {
     };
     let parent = link_of("parent", problems);
     let child = link_of("child", problems);
-    let axis = e.first("axis").map_or([1.0, 0.0, 0.0], |a| {
+    let mut axis = e.first("axis").map_or([1.0, 0.0, 0.0], |a| {
         numbers(a, "xyz", [1.0, 0.0, 0.0], &whose, problems)
     });
     let moving = matches!(
@@ -389,6 +398,8 @@ fn joint(e: &Element, problems: &mut Vec<Problem>) -> Option<Joint> {
     );
     if moving && axis.iter().all(|&x| x == 0.0) {
         problems.push(Problem::new(at(e.line, &whose), "<axis> has zero length"));
+        // the default axis as a placeholder, so that the later checks still run
+        axis = [1.0, 0.0, 0.0];
     }
     let (damping, friction) = e.first("dynamics").map_or((0.0, 0.0), |d| {
         (
@@ -453,6 +464,7 @@ pub(crate) fn robot(
         let name = e.attr("name").unwrap_or_default().to_string();
         if name.is_empty() {
             problems.push(Problem::new(at(e.line, "<link>"), "has no name"));
+            robot.dropped.push(at(e.line, "<link>"));
             continue;
         }
         let whose = format!("link \"{name}\"");
@@ -468,9 +480,16 @@ pub(crate) fn robot(
         });
     }
     for e in root.all("joint") {
-        if let Some(j) = joint(e, problems) {
-            robot.joints.push(j);
+        match joint(e, problems) {
+            // a joint without its links cannot join the tree
+            Some(j) if !(j.parent.is_empty() || j.child.is_empty()) => robot.joints.push(j),
+            _ => robot.dropped.push(at(e.line, "<joint>")),
         }
+    }
+    if root.name != "robot" {
+        robot
+            .dropped
+            .push(at(root.line, &format!("<{}>", root.name)));
     }
     robot
 }

@@ -71,6 +71,11 @@ pub fn to_toml(spec: &Spec, outcome: &Outcome) -> Result<String, String> {
                         [] => {}
                     }
                 }
+                if let Some((name, why)) = &outcome.placed {
+                    if spec.body.get(b).is_some_and(|body| body.name == *name) {
+                        out.push_str(&format!("# position: {why}\n"));
+                    }
+                }
                 b += 1;
             }
             "[[joint]]" => {
@@ -142,6 +147,7 @@ pub fn in_urdf_terms(
         let Ok(i) = index.parse::<usize>() else {
             continue;
         };
+        let is_body = kind == "body";
         let original = match kind {
             "body" => outcome
                 .merged
@@ -166,6 +172,17 @@ pub fn in_urdf_terms(
                 .get(i)
                 .map_or_else(String::new, |l| format!("line {l}: "));
             p.path = format!("{line}{what} \"{name}\" ({})", p.path);
+        }
+        // a free body is welded by the import's options, not by a joint of the URDF
+        let body = is_body.then(|| spec.body.get(i)).flatten();
+        if let Some(how) = body.and_then(|b| {
+            outcome
+                .free_bases
+                .iter()
+                .find(|(n, _)| *n == b.name)
+                .map(|(_, how)| how)
+        }) {
+            p.message = p.message.replace("(a fixed joint)", &format!("({how})"));
         }
     }
     errors

@@ -210,12 +210,15 @@ fn involved(model: &Model, bodies: &[usize]) -> String {
         .filter(|j| bodies.contains(&j.child) || j.parent.is_some_and(|p| bodies.contains(&p)))
         .map(|j| format!("'{}'", j.name))
         .collect();
+    let on = match joints.len() {
+        0 => String::new(),
+        1 => format!(" on joint {}", joints[0]),
+        _ => format!(" on joints {}", joints.join(", ")),
+    };
     format!(
-        "{} {} on {} {}",
+        "{} {}{on}",
         if bodies.len() == 1 { "body" } else { "bodies" },
         quoted(model, bodies),
-        if joints.len() == 1 { "joint" } else { "joints" },
-        joints.join(", ")
     )
 }
 
@@ -247,19 +250,35 @@ fn undetermined(model: &Model, b: usize, soft: &Softest) -> ModelError {
         "has no inertia about an axis"
     };
     let free = model.tree_joint[b].is_none();
-    let how = if free
-        && def
-            .joints
-            .iter()
-            .all(|j| j.child != b && j.parent != Some(b))
-    {
-        "it is a free body with no joint"
+    let lonely = def
+        .joints
+        .iter()
+        .all(|j| j.child != b && j.parent != Some(b));
+    // a free body has no joint of its own to make fixed: it can be welded to the world
+    let (how, fix) = if free && lonely {
+        (
+            "it is a free body with no joint",
+            "give it mass and inertia, weld it to the world or to a body with mass (a fixed \
+             joint), or remove the body",
+        )
+    } else if free {
+        (
+            "it is a free body (the root of its tree) that its joints let move in a way that \
+             moves no body with mass",
+            "give it mass and inertia, or weld it to the world (a fixed joint)",
+        )
     } else if def.joints.iter().all(|j| j.parent != Some(b)) {
-        "it is a leaf whose joint lets it move in a way that moves no body with mass"
+        (
+            "it is a leaf whose joint lets it move in a way that moves no body with mass",
+            "give it mass and inertia, make that joint fixed, or remove the body",
+        )
     } else {
-        "its joints let it move in a way that moves no body with mass"
+        (
+            "its joints let it move in a way that moves no body with mass",
+            "give it mass and inertia, make that joint fixed, or remove the body",
+        )
     };
-    let others = if soft.bodies.len() > 1 || !def.joints.is_empty() {
+    let others = if soft.bodies.len() > 1 || !lonely {
         format!(
             " (the motion is carried by {})",
             involved(model, &soft.bodies)
@@ -268,10 +287,7 @@ fn undetermined(model: &Model, b: usize, soft: &Softest) -> ModelError {
         String::new()
     };
     let why = if soft.sigma <= UNDETERMINED {
-        format!(
-            "{what} and {how}, so its motion is not determined{others}; give it mass and \
-             inertia, make that joint fixed, or remove the body"
-        )
+        format!("{what} and {how}, so its motion is not determined{others}; {fix}")
     } else {
         format!(
             "{what} and its joints let it move in a way that moves the bodies with mass only \
