@@ -7,6 +7,7 @@
 
 mod access;
 mod builder;
+pub mod fmi3;
 mod params;
 mod table;
 mod types;
