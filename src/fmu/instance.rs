@@ -1,6 +1,7 @@
 //! One FMU instance: life-cycle calls and `fmi2DoStep`. The state machine is in `mode.rs`,
 //! get/set by value reference in `params.rs`, FMU states in `snapshot.rs`.
 
+use super::api::Api;
 use super::contract::{self, Format, Spec};
 use super::log::{Category, Filter, LogSink};
 pub use super::mode::{allowed, Mode, Op};
@@ -8,6 +9,7 @@ use super::status::{FmuError, Status};
 use crate::mechanics::{ranges, ModelDef, SolverSettings};
 use crate::sim::Failure;
 use crate::sim::Simulation;
+use crate::variables::fmi3::Table3;
 use crate::variables::{Accessor, VariableTable};
 use std::collections::HashMap;
 use std::path::Path;
@@ -22,6 +24,10 @@ pub struct Instance {
     pub(super) def: ModelDef,
     pub(super) settings: SolverSettings,
     pub(super) table: VariableTable,
+    /// the FMI 3 view of `table` (arrays, FMI 3 value references)
+    pub(super) table3: Table3,
+    /// the C interface the instance was made through
+    pub(super) api: Api,
     /// value reference → index into `table.vars`
     pub(super) index: HashMap<u32, usize>,
     /// input values while no simulation exists (Instantiated mode), by input slot
@@ -58,6 +64,19 @@ impl Instance {
         logging_on: bool,
         sink: Box<dyn LogSink>,
     ) -> Option<Instance> {
+        Self::from_resources_for(Api::Fmi2, name, guid, resource_dir, logging_on, sink)
+    }
+
+    /// [`Instance::from_resources`] for the C interface `api` (its messages name `api`'s
+    /// functions; `fmi3InstantiateCoSimulation` passes the `instantiationToken` as `guid`).
+    pub fn from_resources_for(
+        api: Api,
+        name: &str,
+        guid: &str,
+        resource_dir: &Path,
+        logging_on: bool,
+        sink: Box<dyn LogSink>,
+    ) -> Option<Instance> {
         let path = resource_dir.join("model.json");
         let spec = std::fs::read_to_string(&path)
             .map_err(|e| format!("cannot read {}: {e}", path.display()))
@@ -66,7 +85,7 @@ impl Instance {
                     .map_err(|e| e.to_string())
             });
         match spec {
-            Ok(spec) => Self::from_spec(name, guid, spec, logging_on, sink),
+            Ok(spec) => Self::from_spec_for(api, name, guid, spec, logging_on, sink),
             Err(msg) => {
                 // the runtime's id: an FMU packed with another triad's binary says so here
                 sink.log(
@@ -74,7 +93,8 @@ impl Instance {
                     Status::Error,
                     Category::LogStatusError,
                     &format!(
-                        "fmi2Instantiate: {msg} (this binary: {})",
+                        "{}: {msg} (this binary: {})",
+                        api.instantiate(),
                         super::runtime_id::RUNTIME_TAG
                     ),
                 );
@@ -91,12 +111,24 @@ impl Instance {
         logging_on: bool,
         sink: Box<dyn LogSink>,
     ) -> Option<Instance> {
+        Self::from_spec_for(Api::Fmi2, name, guid, spec, logging_on, sink)
+    }
+
+    /// [`Instance::from_spec`] for the C interface `api`.
+    pub fn from_spec_for(
+        api: Api,
+        name: &str,
+        guid: &str,
+        spec: Spec,
+        logging_on: bool,
+        sink: Box<dyn LogSink>,
+    ) -> Option<Instance> {
         let fail = |sink: &dyn LogSink, msg: String| {
             sink.log(
                 name,
                 Status::Error,
                 Category::LogStatusError,
-                &format!("fmi2Instantiate: {msg}"),
+                &format!("{}: {msg}", api.instantiate()),
             );
             None
         };
@@ -114,7 +146,7 @@ impl Instance {
         if guid != expected {
             return fail(
                 &*sink,
-                format!("GUID mismatch: modelDescription.xml says {guid}, resources/model.json gives {expected} (the FMU was assembled from different builds)"),
+                format!("{} mismatch: modelDescription.xml says {guid}, resources/model.json gives {expected} (the FMU was assembled from different builds)", api.token()),
             );
         }
         let index = table
@@ -128,6 +160,7 @@ impl Instance {
             _ => None,
         });
         let inputs = vec![0.0; n_inputs.max().unwrap_or(0)];
+        let table3 = Table3::new(&table);
         let start = spec.experiment.start;
         let inst = Instance {
             name: name.to_string(),
@@ -137,6 +170,8 @@ impl Instance {
             def,
             settings,
             table,
+            table3,
+            api,
             index,
             inputs,
             sim: None,
@@ -148,7 +183,8 @@ impl Instance {
             sink,
         };
         inst.event(&format!(
-            "fmi2Instantiate: model '{}', {} variables",
+            "{}: model '{}', {} variables",
+            api.instantiate(),
             inst.spec.name,
             inst.table.vars.len()
         ));
@@ -202,7 +238,7 @@ impl Instance {
             Ok(())
         } else {
             Err(FmuError::IllegalCall {
-                op: function,
+                op: self.api.name(function),
                 mode: self.mode.name(),
             })
         }

@@ -18,8 +18,10 @@
 //!   the communication step; the mode stays `StepComplete`, `fmi2LastSuccessfulTime` reports the
 //!   time, and the next `fmi2DoStep` from there works.
 
+pub mod api;
 pub mod capabilities;
 pub mod contract;
+mod fmi3;
 pub mod guid;
 pub mod instance;
 pub mod log;
@@ -31,6 +33,7 @@ pub mod snapshot;
 mod start_gap;
 pub mod status;
 
+pub use api::Api;
 pub use capabilities::{Capabilities, CAPABILITIES};
 pub use instance::{allowed, Instance, Mode, Op};
 pub use log::{Category, LogSink};

@@ -11,7 +11,7 @@ use crate::variables::{Accessor, Causality, Initial, VarType, Variability, Varia
 
 /// The FMI base type a get/set call is for.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
-enum Base {
+pub(super) enum Base {
     Real,
     Integer,
     Boolean,
@@ -66,7 +66,7 @@ fn set_forbidden(mode: Mode, v: &Variable) -> Option<String> {
 }
 
 impl Instance {
-    fn lookup(&self, vr: u32, base: Base) -> Result<&Variable, FmuError> {
+    pub(super) fn lookup(&self, vr: u32, base: Base) -> Result<&Variable, FmuError> {
         self.index
             .get(&vr)
             .and_then(|&i| self.table.vars.get(i))
@@ -76,7 +76,7 @@ impl Instance {
             })
     }
 
-    fn value(&self, v: &Variable) -> Result<f64, FmuError> {
+    pub(super) fn value(&self, v: &Variable) -> Result<f64, FmuError> {
         let value = match (v.causality, &self.sim, v.accessor) {
             (Causality::Parameter, _, _) => read_param(v.accessor, &self.def, &self.settings),
             (_, Some(sim), _) => read_state(v.accessor, sim.state()),
@@ -171,7 +171,7 @@ impl Instance {
         self.set(vrs, &values, Base::Integer, "fmi2SetInteger")
     }
 
-    fn set(
+    pub(super) fn set(
         &mut self,
         vrs: &[u32],
         values: &[f64],

@@ -201,7 +201,7 @@ impl Instance {
         self.check(Op::FmuState, "fmi2GetFMUstate")?;
         if self.mode == Mode::Error {
             return Err(FmuError::IllegalCall {
-                op: "fmi2GetFMUstate",
+                op: self.api.name("fmi2GetFMUstate"),
                 mode: self.mode.name(),
             });
         }
