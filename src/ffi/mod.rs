@@ -1,6 +1,7 @@
-//! The exported `fmi2*` C functions (FMI 2.0.4 §2.1 and §4.2): the only module with `unsafe`
-//! code. Every function is thin: convert the C arguments, call an [`Instance`](crate::fmu::Instance) method, turn the
-//! result into an `fmi2Status`.
+//! The exported `fmi2*` C functions (FMI 2.0.4 §2.1 and §4.2) and, in `fmi3/`, the `fmi3*` ones
+//! (FMI 3.0): the only module with `unsafe` code. Every function is thin: convert the C
+//! arguments, call an [`Instance`](crate::fmu::Instance) method, turn the result into an
+//! `fmi2Status` (an `fmi3Status` has the same codes).
 //!
 //! Conventions (the contract with importers):
 //! - **Panics** never cross the C boundary: every body runs inside `catch_unwind`
@@ -21,6 +22,7 @@
 
 pub mod common;
 pub mod cosim;
+pub mod fmi3;
 pub mod getset;
 mod guard;
 pub mod logger;

@@ -6,23 +6,23 @@ use super::registry;
 use super::types::*;
 use crate::fmu::{FmuError, Op, Snapshot, Status};
 
-const NOT_LIVE: &str =
+pub(crate) const NOT_LIVE: &str =
     "FMUstate is not a live FMU state of this process (freed, its instance freed, or never handed out)";
 
 /// The address that owns the states `comp` allocates.
-fn owner(comp: &Component) -> usize {
+pub(crate) fn owner(comp: &Component) -> usize {
     std::ptr::from_ref(comp) as usize
 }
 
 /// Runs `f` on the live FMU state `s` (any live instance's, see `registry`), or refuses a NULL
 /// or unknown pointer without dereferencing it.
-fn with_snapshot<R>(s: fmi2FMUstate, f: impl FnOnce(&mut Snapshot) -> R) -> Result<R, FmuError> {
+pub(crate) fn with_snapshot<R>(s: fmi2FMUstate, f: impl FnOnce(&mut Snapshot) -> R) -> Result<R, FmuError> {
     non_null!(s, "FMUstate");
     registry::with_state(s as usize, f).ok_or_else(|| FmuError::rejected(NOT_LIVE))
 }
 
 /// Refuses a state of another model loaded in the same process (another GUID).
-fn same_model(comp: &Component, snap: &Snapshot) -> Result<(), FmuError> {
+pub(crate) fn same_model(comp: &Component, snap: &Snapshot) -> Result<(), FmuError> {
     let guid = comp.instance.guid();
     if snap.guid() == guid {
         Ok(())
@@ -40,7 +40,7 @@ fn same_model(comp: &Component, snap: &Snapshot) -> Result<(), FmuError> {
 ///
 /// # Safety
 /// `state` non-NULL and valid for reads and writes.
-unsafe fn store(comp: &Component, state: *mut fmi2FMUstate, snap: Snapshot) {
+pub(crate) unsafe fn store(comp: &Component, state: *mut fmi2FMUstate, snap: Snapshot) {
     // SAFETY: state is valid for reads/writes per the caller.
     let slot = unsafe { &mut *state };
     let mut snap = Some(snap);
