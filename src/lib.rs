@@ -29,3 +29,5 @@ pub mod variables;
 pub mod viewer;
 #[cfg(feature = "tools")]
 pub mod xml;
+#[cfg(feature = "tools")]
+pub mod xml3;

@@ -169,6 +169,19 @@ impl Platform {
         }
     }
 
+    /// The FMI 3 platform tuples (`binaries/<tuple>/`) its binary goes into: the universal
+    /// macOS file serves both `x86_64-darwin` and `aarch64-darwin` (the loader picks its slice);
+    /// `linux64-aarch64` is `aarch64-linux` in FMI 3 (no FMI 2 folder to stand in for).
+    #[must_use]
+    pub fn fmi3_folders(self) -> &'static [&'static str] {
+        match self {
+            Self::Linux64 => &["x86_64-linux"],
+            Self::Win64 => &["x86_64-windows"],
+            Self::Darwin64 => &["aarch64-darwin", "x86_64-darwin"],
+            Self::Aarch64Linux | Self::Linux64Aarch64 => &["aarch64-linux"],
+        }
+    }
+
     /// The system the platform's binary is built for (what it needs beyond that is read from
     /// the binary: [`needs`]).
     #[must_use]
@@ -251,9 +264,31 @@ impl Selection {
     }
 }
 
+/// The FMI 3 platform tuple of this build (`<arch>-<os>`, FMI 3.0 §2.5.1.4), for a host of no
+/// [`Platform`].
+#[must_use]
+pub fn host_fmi3_folder() -> String {
+    let os = match std::env::consts::OS {
+        "macos" => "darwin",
+        other => other,
+    };
+    format!("{}-{os}", std::env::consts::ARCH)
+}
+
+/// The FMI 3 folders of a binary of `platform` (the host's when `None`).
+#[must_use]
+pub fn fmi3_folders(platform: Option<Platform>) -> Vec<String> {
+    platform.map_or_else(
+        || vec![host_fmi3_folder()],
+        |p| p.fmi3_folders().iter().map(|f| (*f).to_string()).collect(),
+    )
+}
+
 /// One binary to pack.
 #[derive(Clone, Debug)]
 pub struct Binary {
+    /// Its platform (`None`: this build's, on a system of no [`Platform`]).
+    pub platform: Option<Platform>,
     /// Folder under `binaries/`.
     pub folder: String,
     /// Library extension (`so`, `dll`, `dylib`).
@@ -339,6 +374,7 @@ fn read(
     let bytes = std::fs::read(path).map_err(|e| format!("{}: {e}", path.display()))?;
     let (label, unreadable) = label(platform, folder, &bytes);
     Ok(Binary {
+        platform,
         folder: folder.to_string(),
         ext,
         label,

@@ -101,16 +101,23 @@ pub fn real(x: f64) -> String {
     }
 }
 
-type W = Writer<Vec<u8>>;
+/// The in-memory XML writer of both model descriptions.
+pub(crate) type W = Writer<Vec<u8>>;
 
-fn unit_definitions(w: &mut W, table: &VariableTable) -> io::Result<()> {
-    let used: BTreeSet<&str> = table.vars.iter().filter_map(|v| v.unit).collect();
+/// The units of `table`'s variables (sorted, each once).
+pub(crate) fn used_units(table: &VariableTable) -> BTreeSet<&'static str> {
+    table.vars.iter().filter_map(|v| v.unit).collect()
+}
+
+/// `<UnitDefinitions>` of the units `used` (the same form in FMI 2 and FMI 3: `<Unit name>`
+/// with `<BaseUnit>` and its `<DisplayUnit>`s); nothing when `used` is empty.
+pub(crate) fn unit_definitions(w: &mut W, used: &BTreeSet<&str>) -> io::Result<()> {
     if used.is_empty() {
         return Ok(());
     }
     w.create_element("UnitDefinitions")
         .write_inner_content(|w| {
-            for unit in used {
+            for &unit in used {
                 w.create_element("Unit")
                     .with_attribute(("name", unit))
                     .write_inner_content(|w| {
@@ -134,6 +141,17 @@ fn unit_definitions(w: &mut W, table: &VariableTable) -> io::Result<()> {
             }
             Ok(())
         })?;
+    Ok(())
+}
+
+/// `<DefaultExperiment>` of `meta` (the same in FMI 2 and FMI 3).
+pub(crate) fn default_experiment(w: &mut W, meta: &Meta) -> io::Result<()> {
+    w.create_element("DefaultExperiment")
+        .with_attribute(("startTime", real(meta.start).as_str()))
+        .with_attribute(("stopTime", real(meta.stop).as_str()))
+        .with_attribute(("tolerance", real(meta.tolerance).as_str()))
+        .with_attribute(("stepSize", real(meta.step).as_str()))
+        .write_empty()?;
     Ok(())
 }
 
@@ -251,7 +269,7 @@ pub fn write_model_description(table: &VariableTable, meta: &Meta) -> io::Result
                 cs = cs.with_attribute((*k, v.as_str()));
             }
             cs.write_empty()?;
-            unit_definitions(w, table)?;
+            unit_definitions(w, &used_units(table))?;
             w.create_element("LogCategories").write_inner_content(|w| {
                 for c in Category::ALL {
                     w.create_element("Category")
@@ -261,12 +279,7 @@ pub fn write_model_description(table: &VariableTable, meta: &Meta) -> io::Result
                 }
                 Ok(())
             })?;
-            w.create_element("DefaultExperiment")
-                .with_attribute(("startTime", real(meta.start).as_str()))
-                .with_attribute(("stopTime", real(meta.stop).as_str()))
-                .with_attribute(("tolerance", real(meta.tolerance).as_str()))
-                .with_attribute(("stepSize", real(meta.step).as_str()))
-                .write_empty()?;
+            default_experiment(w, meta)?;
             w.create_element("ModelVariables")
                 .write_inner_content(|w| {
                     for (i, v) in table.vars.iter().enumerate() {

@@ -2,7 +2,9 @@
 
 use std::path::{Path, PathBuf};
 
+use triad::package::Fmi;
 use triad::sim::Simulation;
+use triad::variables::fmi3::{Table3, TIME_VR};
 use triad::variables::{Causality, VarType, VariableTable};
 
 use super::error::CliError;
@@ -58,54 +60,23 @@ fn plural(n: usize, one: &str, many: &str) -> String {
     format!("{n} {}", if n == 1 { one } else { many })
 }
 
-/// Prints the variable table with aligned columns.
-pub fn describe(model: &str, urdf: &ImportArgs) -> Result<(), CliError> {
-    let spec = load(model, urdf)?;
-    let (def, settings) = spec.lower()?;
-    let table = VariableTable::new(&def, &settings).with_labels(&spec.labels());
-    let rows: Vec<[String; 7]> = table
-        .vars
-        .iter()
-        .map(|v| {
-            [
-                v.name.clone(),
-                v.vr.to_string(),
-                v.causality.fmi_name().into(),
-                v.variability.fmi_name().into(),
-                if v.ty == VarType::Integer {
-                    "Integer"
-                } else {
-                    "Real"
-                }
-                .into(),
-                v.unit.unwrap_or("-").into(),
-                v.description.clone(),
-            ]
-        })
-        .collect();
-    let header = [
-        "name",
-        "vr",
-        "causality",
-        "variability",
-        "type",
-        "unit",
-        "description",
-    ]
-    .map(String::from);
-    let mut widths = [0usize; 7];
-    for row in std::iter::once(&header).chain(&rows) {
+/// Prints `rows` under `header` with aligned columns (`right`: the right-aligned column; the
+/// last column unpadded).
+fn print_table<const N: usize>(header: [&str; N], rows: &[[String; N]], right: usize) {
+    let header = header.map(String::from);
+    let mut widths = [0usize; N];
+    for row in std::iter::once(&header).chain(rows) {
         for (w, cell) in widths.iter_mut().zip(row) {
             *w = (*w).max(cell.chars().count());
         }
     }
     let mut out = String::new();
-    for row in std::iter::once(&header).chain(&rows) {
+    for row in std::iter::once(&header).chain(rows) {
         let mut line = String::new();
         for (k, (cell, w)) in row.iter().zip(widths).enumerate() {
-            if k == 6 {
+            if k == N - 1 {
                 line.push_str(cell);
-            } else if k == 1 {
+            } else if k == right {
                 line.push_str(&format!("{cell:>w$}  "));
             } else {
                 line.push_str(&format!("{cell:<w$}  "));
@@ -115,6 +86,99 @@ pub fn describe(model: &str, urdf: &ImportArgs) -> Result<(), CliError> {
         out.push('\n');
     }
     print!("{out}");
+}
+
+fn type_name(ty: VarType, fmi: Fmi) -> &'static str {
+    match (ty, fmi) {
+        (VarType::Integer, Fmi::V2) => "Integer",
+        (VarType::Real, Fmi::V2) => "Real",
+        (VarType::Integer, Fmi::V3) => "Int32",
+        (VarType::Real, Fmi::V3) => "Float64",
+    }
+}
+
+/// Prints the FMI 3 variables: `time`, then each variable with its dimensions (`[3,3]`).
+fn describe3(table: &VariableTable) {
+    let t3 = Table3::new(table);
+    let mut rows: Vec<[String; 8]> = vec![[
+        "time".into(),
+        "".into(),
+        TIME_VR.to_string(),
+        "independent".into(),
+        "continuous".into(),
+        "Float64".into(),
+        "s".into(),
+        "simulation time".into(),
+    ]];
+    for v in &t3.vars {
+        let Some(f) = v.members.first().and_then(|&vr| table.by_vr(vr)) else {
+            continue;
+        };
+        rows.push([
+            v.name.clone(),
+            triad::package::dims_text(&v.dims),
+            v.vr.to_string(),
+            f.causality.fmi_name().into(),
+            f.variability.fmi_name().into(),
+            type_name(f.ty, Fmi::V3).into(),
+            f.unit.unwrap_or("-").into(),
+            v.description.clone(),
+        ]);
+    }
+    print_table(
+        [
+            "name",
+            "dims",
+            "vr",
+            "causality",
+            "variability",
+            "type",
+            "unit",
+            "description",
+        ],
+        &rows,
+        2,
+    );
+}
+
+/// Prints the variable table with aligned columns (`fmi`: `2`, or `3` for the FMI 3 view).
+pub fn describe(model: &str, fmi: &str, urdf: &ImportArgs) -> Result<(), CliError> {
+    let fmi = Fmi::parse(fmi)?;
+    let spec = load(model, urdf)?;
+    let (def, settings) = spec.lower()?;
+    let table = VariableTable::new(&def, &settings).with_labels(&spec.labels());
+    if fmi == Fmi::V3 {
+        describe3(&table);
+        return Ok(());
+    }
+    let rows: Vec<[String; 7]> = table
+        .vars
+        .iter()
+        .map(|v| {
+            [
+                v.name.clone(),
+                v.vr.to_string(),
+                v.causality.fmi_name().into(),
+                v.variability.fmi_name().into(),
+                type_name(v.ty, Fmi::V2).into(),
+                v.unit.unwrap_or("-").into(),
+                v.description.clone(),
+            ]
+        })
+        .collect();
+    print_table(
+        [
+            "name",
+            "vr",
+            "causality",
+            "variability",
+            "type",
+            "unit",
+            "description",
+        ],
+        &rows,
+        1,
+    );
     Ok(())
 }
 
@@ -123,8 +187,10 @@ pub fn build(
     model: &Path,
     output: Option<&Path>,
     platforms: Option<&str>,
+    fmi: &str,
     urdf: &ImportArgs,
 ) -> Result<(), CliError> {
+    let fmi = Fmi::parse(fmi)?;
     let selection = match platforms {
         Some(text) => triad::platforms::Selection::parse(text)?,
         None => triad::platforms::Selection::Found,
@@ -157,7 +223,7 @@ pub fn build(
         || PathBuf::from(format!("{}.fmu", spec.name)),
         Path::to_path_buf,
     );
-    let built = triad::package::build_fmu_for(&spec, model.parent(), &out, &selection)
+    let built = triad::package::build_fmu_fmi(&spec, model.parent(), &out, &selection, fmi)
         .map_err(|e| format!("{}: {e}", model.display()))?;
     for (folder, label, source) in &built.packed {
         println!(

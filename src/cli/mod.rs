@@ -20,7 +20,7 @@ use clap::{Parser, Subcommand};
 use error::CliError;
 use import_args::ImportArgs;
 
-/// triad: rigid multibody models to FMI 2.0 Co-Simulation FMUs.
+/// triad: rigid multibody models to FMI 2.0 and FMI 3.0 Co-Simulation FMUs.
 #[derive(Debug, Parser)]
 #[command(name = "triad", version, about)]
 pub struct Cli {
@@ -41,11 +41,16 @@ pub enum Command {
         #[command(flatten)]
         urdf: ImportArgs,
     },
-    /// Print the variable table (name, valueReference, causality, variability, unit).
+    /// Print the variable table (name, valueReference, causality, variability, unit); with
+    /// --fmi 3 the FMI 3 names (arrays with their dimensions) and value references.
     Describe {
         /// Model spec (.toml or .json), a robot description (.urdf), or the name of a shipped
         /// model.
         model: String,
+        /// Whose names to print: 2 (default: the FMI 2 scalars) or 3 (the FMI 3 variables:
+        /// vectors and matrices as arrays, `time` at valueReference 0).
+        #[arg(long, value_name = "2|3", default_value = "2", value_parser = ["2", "3"])]
+        fmi: String,
         /// How a .urdf MODEL is imported.
         #[command(flatten)]
         urdf: ImportArgs,
@@ -57,8 +62,8 @@ pub enum Command {
     /// places the bodies from their recorded poses, with play/pause, time slider, speed, loop,
     /// orbit/pan/zoom, frames, sites, a trace and a panel of joint angles and energy - work.
     Animate(animate::AnimateArgs),
-    /// Package an FMI 2.0 Co-Simulation FMU for MODEL, with the runtime binary of every
-    /// platform found (one modelDescription.xml and one GUID for all).
+    /// Package an FMI 2.0 (or, with --fmi 3, FMI 3.0) Co-Simulation FMU for MODEL, with the
+    /// runtime binary of every platform found (one modelDescription.xml and one GUID for all).
     ///
     /// The binaries are read from the runtime directory: $TRIAD_RUNTIME_DIR, else runtime/
     /// beside the triad executable, else ../runtime/ (target/runtime/ for target/release/triad),
@@ -72,6 +77,11 @@ pub enum Command {
     /// it packed, each binary labelled by what it needs, read from the binary (the highest glibc
     /// version its symbols need, each macOS slice's minimum, the Windows version of its header;
     /// a host build needs the host's glibc).
+    ///
+    /// With --fmi 3 the same platforms go under the FMI 3 platform tuples: linux64 ->
+    /// binaries/x86_64-linux, win64 -> x86_64-windows, darwin64 -> x86_64-darwin and
+    /// aarch64-darwin (the universal file in both), aarch64-linux and linux64-aarch64 ->
+    /// aarch64-linux.
     Build {
         /// Model spec (.toml or .json) or robot description (.urdf).
         model: PathBuf,
@@ -87,6 +97,15 @@ pub enum Command {
         /// that names the command building it.
         #[arg(long, value_name = "all|host|LIST")]
         platforms: Option<String>,
+        /// FMI version of the FMU: 2 (default) or 3. Pick 3 for arrays (body.B.R as one 3x3
+        /// variable, body.B.r [3], ...) in a host that imports FMI 3.0 Co-Simulation (fmpy,
+        /// Simulink R2023b+, Dymola); pick 2 for every other host (FMI 2.0 is what most tools,
+        /// OMSimulator and libcosim among them, import). Both come from the same variable table
+        /// and the same runtime binary and give the same results; FMI 3 names vectors and
+        /// matrices as arrays and adds `time` (valueReference 0). Early return and
+        /// directional/adjoint derivatives are not offered yet.
+        #[arg(long, value_name = "2|3", default_value = "2", value_parser = ["2", "3"])]
+        fmi: String,
         /// How a .urdf MODEL is imported.
         #[command(flatten)]
         urdf: ImportArgs,
@@ -114,15 +133,16 @@ pub enum Command {
 pub fn run(cli: Cli) -> ExitCode {
     let result = match cli.command {
         Command::Check { model, urdf } => commands::check(&model, &urdf),
-        Command::Describe { model, urdf } => commands::describe(&model, &urdf),
+        Command::Describe { model, fmi, urdf } => commands::describe(&model, &fmi, &urdf),
         Command::Simulate(args) => simulate::run(&args),
         Command::Animate(args) => animate::run(&args),
         Command::Build {
             model,
             output,
             platforms,
+            fmi,
             urdf,
-        } => commands::build(&model, output.as_deref(), platforms.as_deref(), &urdf),
+        } => commands::build(&model, output.as_deref(), platforms.as_deref(), &fmi, &urdf),
         Command::Import {
             robot,
             output,
