@@ -15,6 +15,7 @@ use std::ffi::{c_char, c_void, CStr, CString};
 use std::path::PathBuf;
 use std::sync::Mutex;
 pub mod api;
+pub mod fmi3;
 use api::*;
 use triad::ffi::types::*;
 use triad::fmu::contract::{self, Format, Spec};
