@@ -43,9 +43,7 @@ impl Api {
         }
         match fmi2_name {
             "fmi2SetDebugLogging" => "fmi3SetDebugLogging",
-            "fmi2SetupExperiment" | "fmi2EnterInitializationMode" => {
-                "fmi3EnterInitializationMode"
-            }
+            "fmi2SetupExperiment" | "fmi2EnterInitializationMode" => "fmi3EnterInitializationMode",
             "fmi2ExitInitializationMode" => "fmi3ExitInitializationMode",
             "fmi2Terminate" => "fmi3Terminate",
             "fmi2Reset" => "fmi3Reset",

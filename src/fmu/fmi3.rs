@@ -96,10 +96,7 @@ impl Instance {
                     .is_some_and(|&m| self.lookup(m, base).is_ok())
             })
             .ok_or_else(|| {
-                FmuError::rejected(format!(
-                    "unknown value reference {vr} for {}",
-                    base.name3()
-                ))
+                FmuError::rejected(format!("unknown value reference {vr} for {}", base.name3()))
             })
     }
 
