@@ -16,7 +16,10 @@ pub(crate) fn owner(comp: &Component) -> usize {
 
 /// Runs `f` on the live FMU state `s` (any live instance's, see `registry`), or refuses a NULL
 /// or unknown pointer without dereferencing it.
-pub(crate) fn with_snapshot<R>(s: fmi2FMUstate, f: impl FnOnce(&mut Snapshot) -> R) -> Result<R, FmuError> {
+pub(crate) fn with_snapshot<R>(
+    s: fmi2FMUstate,
+    f: impl FnOnce(&mut Snapshot) -> R,
+) -> Result<R, FmuError> {
     non_null!(s, "FMUstate");
     registry::with_state(s as usize, f).ok_or_else(|| FmuError::rejected(NOT_LIVE))
 }
