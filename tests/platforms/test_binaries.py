@@ -1,15 +1,15 @@
 """Structure of every runtime binary in the runtime directory (TRIAD_RUNTIME_DIR, default
 target/runtime), checked without running it:
 
-- linux64 and aarch64-linux: exactly the 34 fmi2* functions exported, NEEDED only libc, libm,
+- linux64 and aarch64-linux: exactly the 34 fmi2* and the 75 fmi3* functions exported, NEEDED only libc, libm,
   libpthread, libdl and the loader, no GLIBC symbol version above 2.17, the right machine;
-- win64: a PE32+ x86-64 DLL exporting exactly the 34 functions, importing only Windows system
+- win64: a PE32+ x86-64 DLL exporting exactly those 109 functions, importing only Windows system
   DLLs (no libgcc_s, libwinpthread or libstdc++);
-- darwin64: one universal file with an x86_64 and an arm64 slice, each exporting exactly the 34
+- darwin64: one universal file with an x86_64 and an arm64 slice, each exporting exactly the 109
   functions (the C names with Mach-O's leading underscore), loading only libSystem, minimum
   macOS 10.12 (x86_64) and 11.0 (arm64), install name @rpath/libtriad.dylib, and on arm64 (which
   refuses unsigned code; zig's linker signs it) an ad-hoc signature whose every page hash is
-  recomputed here (macho.py). Besides the fmi2* functions zig's linker exports four symbols it
+  recomputed here (macho.py). Besides the FMI functions zig's linker exports four symbols it
   cannot be told to hide (DARWIN_EXTRA).
 
 Run by .ci/run with the platform tools' python: `python -m pytest tests/platforms`.
@@ -28,9 +28,14 @@ import macho  # noqa: E402
 
 ROOT = pathlib.Path(__file__).resolve().parents[2]
 RUNTIME = pathlib.Path(os.environ.get("TRIAD_RUNTIME_DIR", ROOT / "target" / "runtime"))
-FMI2 = sorted(
+FMI2_LIST = sorted(
     re.findall(r'"(fmi2\w+)"', (ROOT / "src" / "ffi" / "types.rs").read_text())
 )
+FMI3_LIST = sorted(
+    re.findall(r'"(fmi3\w+)"', (ROOT / "src" / "ffi" / "fmi3" / "types.rs").read_text())
+)
+# every exported function: FMI 2's and FMI 3's, from one binary
+FMI2 = sorted(FMI2_LIST + FMI3_LIST)
 SYSTEM_DLLS = {
     "kernel32.dll", "ntdll.dll", "msvcrt.dll", "bcryptprimitives.dll", "advapi32.dll",
     "ws2_32.dll", "userenv.dll", "bcrypt.dll", "api-ms-win-core-synch-l1-2-0.dll",
@@ -46,8 +51,9 @@ DARWIN_EXTRA = re.compile(
 )
 
 
-def test_the_fmi2_list_is_the_34_functions():
-    assert len(FMI2) == 34 and len(set(FMI2)) == 34, FMI2
+def test_the_lists_are_the_34_and_75_functions():
+    assert len(FMI2_LIST) == 34 and len(set(FMI2_LIST)) == 34, FMI2_LIST
+    assert len(FMI3_LIST) == 75 and len(set(FMI3_LIST)) == 75, FMI3_LIST
 
 
 def required(platform, file):
