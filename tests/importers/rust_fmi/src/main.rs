@@ -8,7 +8,7 @@
 //! (`start + (n + 1) * STEP`, the last step shortened to end on STOP).
 //!
 //! OUT.csv holds `time` and every element of every output, named as in FMI 2 (`body.R[1,2]`:
-//! arrays row-major, 1-based indices), each value printed with `{:?}` (the shortest string that
+//! arrays row-major, 1-based indices; a name with a comma in double quotes), each value printed with `{:?}` (the shortest string that
 //! reads back to the same f64), so that results compare bit for bit.
 //!
 //! Standard output reports what was read from the model description, one fact a line:
@@ -298,7 +298,18 @@ fn run(args: &[String]) -> Res<()> {
         header.extend(s.elements.iter().cloned());
     }
     let io = |e: std::io::Error| format!("{out}: {e}");
-    writeln!(csv, "{}", header.join(",")).map_err(io)?;
+    // names with a comma (`R[1,2]`) quoted, as in RFC 4180
+    let quoted: Vec<String> = header
+        .iter()
+        .map(|h| {
+            if h.contains([',', '"']) {
+                format!("\"{}\"", h.replace('"', "\"\""))
+            } else {
+                h.clone()
+            }
+        })
+        .collect();
+    writeln!(csv, "{}", quoted.join(",")).map_err(io)?;
 
     let mut buf: Vec<f64> = Vec::new();
     let mut sample = |inst: &mut <Fmi3Import as Fmi3Model>::InstanceCS,
