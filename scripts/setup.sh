@@ -6,6 +6,10 @@
 #     bash scripts/setup.sh            # the above
 #     bash scripts/setup.sh --browser  # and Debian's chromium, for the 3-D replay's browser test
 #                                      # (tests/python/test_animate.py); .ci/run asks for it
+#     bash scripts/setup.sh --importers  # and Debian's libclang-dev, for the Rust FMI 3 importer
+#                                      # of tests/python/test_fmi3_rust_importer.py (fmi-sys runs
+#                                      # bindgen); .ci/run asks for it
+# (the options combine: --browser --importers)
 set -euo pipefail
 cd "$(dirname "$0")/.."
 
@@ -15,9 +19,13 @@ if [ ! -c /dev/null ] && [ "$(id -u)" = 0 ]; then
 fi
 
 packages=()
-if [ "${1:-}" = "--browser" ]; then
-  packages+=(chromium)
-fi
+for arg in "$@"; do
+  case "$arg" in
+    --browser) packages+=(chromium) ;;
+    --importers) packages+=(libclang-dev) ;;
+    *) echo "setup: unknown option $arg (--browser, --importers)" >&2; exit 2 ;;
+  esac
+done
 need_apt=()
 for pkg in "${packages[@]}"; do
   dpkg -s "$pkg" >/dev/null 2>&1 || need_apt+=("$pkg")
