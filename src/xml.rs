@@ -155,23 +155,42 @@ pub(crate) fn default_experiment(w: &mut W, meta: &Meta) -> io::Result<()> {
     Ok(())
 }
 
-fn scalar_variable(w: &mut W, v: &Variable) -> io::Result<()> {
-    let mut e = w
-        .create_element("ScalarVariable")
-        .with_attribute(("name", v.name.as_str()))
-        .with_attribute(("valueReference", v.vr.to_string().as_str()));
-    if !v.description.is_empty() {
-        e = e.with_attribute(("description", v.description.as_str()));
+/// The attributes both FMI versions give a variable, in their order: `name`,
+/// `valueReference`, `description` (if any), `causality`, `variability`, `initial` (`exact`
+/// but for inputs, or `calculated`); `v` gives the kinds, `name` and `vr` may be FMI 3's.
+pub(crate) fn common_attributes<'a>(
+    mut e: quick_xml::writer::ElementWriter<'a, Vec<u8>>,
+    name: &'a str,
+    vr: u32,
+    description: &'a str,
+    v: &Variable,
+) -> quick_xml::writer::ElementWriter<'a, Vec<u8>> {
+    e = e
+        .with_attribute(("name", name))
+        .with_attribute(("valueReference", vr.to_string().as_str()));
+    if !description.is_empty() {
+        e = e.with_attribute(("description", description));
     }
     e = e.with_attribute(("causality", v.causality.fmi_name()));
     e = e.with_attribute(("variability", v.variability.fmi_name()));
     match v.initial {
         Initial::Exact if v.causality != Causality::Input => {
-            e = e.with_attribute(("initial", "exact"))
+            e = e.with_attribute(("initial", "exact"));
         }
         Initial::Calculated => e = e.with_attribute(("initial", "calculated")),
         _ => {}
     }
+    e
+}
+
+fn scalar_variable(w: &mut W, v: &Variable) -> io::Result<()> {
+    let e = common_attributes(
+        w.create_element("ScalarVariable"),
+        &v.name,
+        v.vr,
+        &v.description,
+        v,
+    );
     e.write_inner_content(|w| {
         let (tag, start) = match v.ty {
             VarType::Real => ("Real", v.start.map(real)),

@@ -9,7 +9,8 @@ use crate::fmu::Category;
 use crate::variables::fmi3::{Table3, Var3, TIME_VR};
 use crate::variables::{Causality, Initial, VarType, Variable, VariableTable};
 use crate::xml::{
-    default_experiment, real, unit_definitions, used_units, Meta, GENERATION_TOOL, W,
+    common_attributes, default_experiment, real, unit_definitions, used_units, Meta,
+    GENERATION_TOOL, W,
 };
 use quick_xml::events::{BytesDecl, BytesText, Event};
 use quick_xml::Writer;
@@ -71,22 +72,7 @@ fn variable(w: &mut W, table: &VariableTable, v: &Var3) -> io::Result<()> {
         VarType::Real => "Float64",
         VarType::Integer => "Int32",
     };
-    let mut e = w
-        .create_element(tag)
-        .with_attribute(("name", v.name.as_str()))
-        .with_attribute(("valueReference", v.vr.to_string().as_str()));
-    if !v.description.is_empty() {
-        e = e.with_attribute(("description", v.description.as_str()));
-    }
-    e = e.with_attribute(("causality", f.causality.fmi_name()));
-    e = e.with_attribute(("variability", f.variability.fmi_name()));
-    match f.initial {
-        Initial::Exact if f.causality != Causality::Input => {
-            e = e.with_attribute(("initial", "exact"));
-        }
-        Initial::Calculated => e = e.with_attribute(("initial", "calculated")),
-        _ => {}
-    }
+    let mut e = common_attributes(w.create_element(tag), &v.name, v.vr, &v.description, f);
     if let Some(unit) = f.unit.filter(|_| f.ty == VarType::Real) {
         e = e.with_attribute(("unit", unit));
         if let Some(d) = f.display_unit {
