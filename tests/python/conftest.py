@@ -68,3 +68,35 @@ def triad_bin():
     if not b or not os.path.exists(b):
         _missing(f"TRIAD_BIN is not set or missing ({b!r})")
     return b
+
+
+@pytest.fixture(scope="session")
+def built(tmp_path_factory):
+    """name -> (FMI 2 FMU, FMI 3 FMU) of the shipped model `name`, built with TRIAD_BIN (host
+    platform only) on first use; shared by the FMI 3 tests."""
+    import subprocess
+
+    triad = os.environ.get("TRIAD_BIN")
+    if not triad or not os.path.exists(triad):
+        _missing(f"TRIAD_BIN is not set or missing ({triad!r})")
+    root = pathlib.Path(__file__).resolve().parent.parent.parent
+    out = tmp_path_factory.mktemp("fmi3")
+    cache = {}
+
+    def get(name):
+        if name not in cache:
+            spec = root / "modelDescription" / name / "spec.toml"
+            pair = []
+            for version in ("2", "3"):
+                fmu = out / f"{name}.fmi{version}.fmu"
+                subprocess.run(
+                    [triad, "build", str(spec), "--fmi", version, "--platforms", "host", "-o", str(fmu)],
+                    check=True,
+                    capture_output=True,
+                    text=True,
+                )
+                pair.append(str(fmu))
+            cache[name] = tuple(pair)
+        return cache[name]
+
+    return get

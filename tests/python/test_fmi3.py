@@ -31,36 +31,6 @@ NAMES = [s.parent.name for s in SPECS]
 STOP = 1.0
 
 
-@pytest.fixture(scope="module")
-def built(tmp_path_factory):
-    """name -> (FMI 2 FMU, FMI 3 FMU), built on first use."""
-    import os
-
-    triad = os.environ.get("TRIAD_BIN")
-    if not triad or not os.path.exists(triad):
-        conftest._missing(f"TRIAD_BIN is not set or missing ({triad!r})")
-    out = tmp_path_factory.mktemp("fmi3")
-    cache = {}
-
-    def get(name):
-        if name not in cache:
-            spec = ROOT / "modelDescription" / name / "spec.toml"
-            pair = []
-            for version in ("2", "3"):
-                fmu = out / f"{name}.fmi{version}.fmu"
-                subprocess.run(
-                    [triad, "build", str(spec), "--fmi", version, "--platforms", "host", "-o", str(fmu)],
-                    check=True,
-                    capture_output=True,
-                    text=True,
-                )
-                pair.append(str(fmu))
-            cache[name] = tuple(pair)
-        return cache[name]
-
-    return get
-
-
 def _library(fmu, tmp_path):
     """The packed library of this machine's FMI 3 platform tuple, extracted."""
     from fmpy import platform_tuple
