@@ -3,7 +3,7 @@
 //! version the library's symbols need (here computed independently: `objdump -T`, or the
 //! `GLIBC_` strings of the file), and `documentation/index.html` lists the same label. A host
 //! build needs the host's glibc (2.35 on Ubuntu 22.04), not the 2.17 of the runtime that
-//! `scripts/platforms.sh` builds. Mach-O and PE runtimes under `target/runtime/` are read
+//! `scripts/platforms.sh` builds (whose symbols need at most GLIBC_2.14: so it is labelled). Mach-O and PE runtimes under `target/runtime/` are read
 //! when they exist (their parsers are unit-tested on synthetic headers in
 //! `src/platforms/needs.rs`).
 
@@ -51,8 +51,9 @@ fn dotted(v: &[u32]) -> String {
 #[test]
 fn the_host_build_is_labelled_with_the_glibc_it_needs() {
     let lib = triad::platforms::find_cdylib().expect("the host library");
+    // the host build (glibc 2.35 here) or, in CI, the 2.17 runtime (`TRIAD_CDYLIB`), whose
+    // symbols need at most GLIBC_2.14: the label says what the file needs, whichever it is
     let want = highest_glibc(&lib);
-    assert!(want >= vec![2, 17], "{want:?}");
     let bytes = std::fs::read(&lib).unwrap();
     assert_eq!(
         triad::platforms::needs(&bytes).unwrap(),
