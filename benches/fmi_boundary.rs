@@ -4,6 +4,11 @@
 //! simulate` runs) and the bare `mechanics::step`.
 //! Run: `cargo bench --bench fmi_boundary -- --warm-up-time 1 --measurement-time 3`.
 //!
+//! Group `fmi3`: the same double-pendulum step through `fmi3DoStep` against `fmi2DoStep`, and
+//! every output of the 6-joint robot_arm read by FMI 3 arrays (one `fmi3GetFloat64` of all
+//! output variables) against the FMI 2 scalars (one `fmi2GetReal` of all output scalars).
+//! Run: `cargo bench --bench fmi_boundary -- fmi3`.
+//!
 //! Group `hostile`: one `fmi2DoStep` of H = 1e6 after spinning the shipped space_arm and
 //! robot_arm up under ±1000 N·m for 0.05 s, the call that the work bound ends
 //! (`sim::WORK_PER_SUBSTEP`): its time in seconds is the bound's cost on this machine.
@@ -87,5 +92,39 @@ fn hostile(c: &mut Criterion) {
     g.finish();
 }
 
-criterion_group!(benches, bench, hostile);
+fn fmi3(c: &mut Criterion) {
+    use fmu_support::fmi3::{shipped, Fmu3};
+    use triad::variables::Causality;
+    let mut g = c.benchmark_group("fmi3");
+    let m = fmu_support::TestModel::new(spec_text());
+    let f2 = fmu_support::Fmu::initialised(&m);
+    let f3 = Fmu3::initialised(&m);
+    let (mut t2, mut t3) = (0.0, 0.0);
+    g.bench_function("fmi2DoStep", |b| {
+        b.iter(|| {
+            assert_eq!(f2.step(t2, H), 0);
+            t2 += H;
+        })
+    });
+    g.bench_function("fmi3DoStep", |b| {
+        b.iter(|| {
+            assert_eq!(f3.step(t3, H).0, 0);
+            t3 += H;
+        })
+    });
+    let arm = shipped("robot_arm");
+    let a2 = fmu_support::Fmu::initialised(&arm);
+    let a3 = Fmu3::initialised(&arm);
+    let scalars = arm.vrs(Causality::Output);
+    let (arrays, n) = a3.vrs(&arm, Causality::Output);
+    g.bench_function("robot_arm_outputs_fmi2_scalars", |b| {
+        b.iter(|| assert_eq!(a2.get_real(&scalars).0, 0))
+    });
+    g.bench_function("robot_arm_outputs_fmi3_arrays", |b| {
+        b.iter(|| assert_eq!(a3.get_f64(&arrays, n).0, 0))
+    });
+    g.finish();
+}
+
+criterion_group!(benches, bench, fmi3, hostile);
 criterion_main!(benches);

@@ -111,36 +111,56 @@ impl Instance {
         }
     }
 
-    fn get3(
+    /// Checks a get of `vrs` into `n_values` values of type `base` (mode, references, count)
+    /// without reading anything; allocates nothing.
+    fn check_get3(
         &self,
         vrs: &[u32],
         n_values: usize,
         base: Base,
         function: &'static str,
-    ) -> Result<Vec<f64>, FmuError> {
+    ) -> Result<(), FmuError> {
         self.check(Op::Get, function)?;
-        let mut vars: Vec<Option<&Var3>> = Vec::with_capacity(vrs.len());
+        let mut want = 0;
+        for &vr in vrs {
+            want += if vr == TIME_VR && base == Base::Real {
+                1
+            } else {
+                self.var3(vr, base)?.len()
+            };
+        }
+        Self::count(n_values, want, vrs.len())
+    }
+
+    /// The values of `vrs` (checked by [`Instance::check_get3`]) in order, into `put`.
+    fn read3(
+        &self,
+        vrs: &[u32],
+        base: Base,
+        mut put: impl FnMut(usize, f64),
+    ) -> Result<(), FmuError> {
+        let mut k = 0;
         for &vr in vrs {
             if vr == TIME_VR && base == Base::Real {
-                vars.push(None);
-            } else {
-                vars.push(Some(self.var3(vr, base)?));
+                put(k, self.time());
+                k += 1;
+                continue;
+            }
+            // checked: the variable exists and is of type `base`, and so are its members
+            let var = match self.table3.by_vr(vr) {
+                Some(var) => var,
+                None => self.var3(vr, base)?,
+            };
+            for &m in &var.members {
+                let element = self
+                    .table
+                    .by_vr(m)
+                    .map_or_else(|| self.lookup(m, base), Ok)?;
+                put(k, self.value(element)?);
+                k += 1;
             }
         }
-        let want = vars.iter().map(|v| v.map_or(1, Var3::len)).sum();
-        Self::count(n_values, want, vrs.len())?;
-        let mut values = Vec::with_capacity(want);
-        for v in vars {
-            match v {
-                None => values.push(self.time()),
-                Some(v) => {
-                    for &m in &v.members {
-                        values.push(self.value(self.lookup(m, base)?)?);
-                    }
-                }
-            }
-        }
-        Ok(values)
+        Ok(())
     }
 
     fn set3(
@@ -170,8 +190,8 @@ impl Instance {
     /// Wrong mode, an unknown value reference or one of another type, `nValues` not the sum
     /// of the variables' sizes; `out` is then unchanged.
     pub fn get_float64(&self, vrs: &[u32], out: &mut [f64]) -> Result<Status, FmuError> {
-        let values = self.get3(vrs, out.len(), Base::Real, "fmi3GetFloat64")?;
-        out.copy_from_slice(&values);
+        self.check_get3(vrs, out.len(), Base::Real, "fmi3GetFloat64")?;
+        self.read3(vrs, Base::Real, |k, v| out[k] = v)?;
         Ok(Status::Ok)
     }
 
@@ -189,10 +209,8 @@ impl Instance {
     /// # Errors
     /// As [`Instance::get_float64`].
     pub fn get_int32(&self, vrs: &[u32], out: &mut [i32]) -> Result<Status, FmuError> {
-        let values = self.get3(vrs, out.len(), Base::Integer, "fmi3GetInt32")?;
-        for (o, v) in out.iter_mut().zip(values) {
-            *o = v as i32;
-        }
+        self.check_get3(vrs, out.len(), Base::Integer, "fmi3GetInt32")?;
+        self.read3(vrs, Base::Integer, |k, v| out[k] = v as i32)?;
         Ok(Status::Ok)
     }
 
