@@ -233,9 +233,10 @@ impl Simulation {
         WORK_PER_SUBSTEP * f64::from(self.model.settings().max_substeps.max(1))
     }
 
-    /// The Newton work since `start` (an effort count), body-iterations.
-    fn work_since(&self, start: u64) -> f64 {
-        (self.state.effort() - start) as f64 * self.work_size()
+    /// The Newton work since `start` (an effort count) of a model of size `size`
+    /// ([`Simulation::work_size`], computed once per communication step), body-iterations.
+    fn work_since(&self, start: u64, size: f64) -> f64 {
+        (self.state.effort() - start) as f64 * size
     }
 
     /// Advances by the communication step `h`, landing on `t + h` exactly (the last sub-step
@@ -302,7 +303,7 @@ impl Simulation {
         // and the lag must be undone too)
         self.saved.copy_values_from(&self.state);
         let dt = span / needed;
-        let (start, budget) = (self.state.effort(), self.work_bound());
+        let (start, budget, size) = (self.state.effort(), self.work_bound(), self.work_size());
         for k in 0..n {
             if let Err(error) = step_state(&self.model, &mut self.state, dt) {
                 self.state.copy_values_from(&self.saved);
@@ -311,7 +312,7 @@ impl Simulation {
                     last_good_time: t0,
                 });
             }
-            let work = self.work_since(start);
+            let work = self.work_since(start, size);
             if work > budget && k + 1 < n {
                 self.state.set_lag(0.0);
                 let reached = (t0 - self.saved.lag()) + dt * (k + 1) as f64;
@@ -350,9 +351,9 @@ impl Simulation {
         let mut done = 0.0;
         // a step that must end on a joint-stop crossing (`Verdict::Land`)
         let mut landing: Option<f64> = None;
-        let (start, budget) = (self.state.effort(), self.work_bound());
+        let (start, budget, size) = (self.state.effort(), self.work_bound(), self.work_size());
         while remaining > 0.0 {
-            let work = self.work_since(start);
+            let work = self.work_since(start, size);
             if work > budget {
                 let reached = (t0 - self.saved.lag()) + done;
                 self.state.set_lag(0.0);

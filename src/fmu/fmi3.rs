@@ -147,10 +147,10 @@ impl Instance {
                 continue;
             }
             // checked: the variable exists and is of type `base`, and so are its members
-            let var = match self.table3.by_vr(vr) {
-                Some(var) => var,
-                None => self.var3(vr, base)?,
-            };
+            let var = self
+                .table3
+                .by_vr(vr)
+                .map_or_else(|| self.var3(vr, base), Ok)?;
             for &m in &var.members {
                 let element = self
                     .table
