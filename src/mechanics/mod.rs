@@ -35,10 +35,13 @@ pub use model::def::{
     SolverSettings, STOP_STIFFNESS,
 };
 pub use model::error::ModelError;
+pub use model::linear::{Linear, Quantity};
 pub use model::runtime::{InputSlot, Model};
+pub use model::tree_dynamics::{Coord, TreeDynamics, Unsupported};
 pub use model::{body, constraint, contact, def, joint, kinematics, loops, ranges};
 pub use run::advance::{controlled_step, step, step_state};
 pub use run::control::{above_floor, Control, Verdict};
+pub use run::operating::Operating;
 pub use run::outputs::{BodyOutput, JointOutput, Outputs};
 pub use run::state::State;
 pub use step::error::StepError;

@@ -17,6 +17,8 @@
 //!   (`contact_law`);
 //! - the valid range of every parameter and solver setting (`ranges`), shared by the spec
 //!   check and the FMU;
+//! - the continuous-time dynamics of trees in minimal coordinates, generic over the scalar
+//!   (`tree_dynamics`), and its exact linear models by dual numbers (`linear`);
 //! - test models shared by several layers' unit tests (`fixtures`).
 //!
 //! Uses: `linalg` and `crate::math`; never `step` or `run`.
@@ -34,6 +36,7 @@ pub(crate) mod fixtures;
 pub mod joint;
 pub(crate) mod kernels;
 pub mod kinematics;
+pub mod linear;
 pub mod loops;
 pub(crate) mod one_sided;
 pub(crate) mod projection;
@@ -43,3 +46,4 @@ pub(crate) mod runtime;
 pub(crate) mod sink;
 pub(crate) mod sparse_row;
 pub(crate) mod stops;
+pub mod tree_dynamics;

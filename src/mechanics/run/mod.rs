@@ -2,12 +2,14 @@
 //! tunable parameters, the step's workspace and memory), the outputs read off it (`outputs`,
 //! with the reported rates projected onto the admissible velocities), and the entry points
 //! that advance it (`advance`: `step`, `step_state`, `controlled_step`), the step-size control
-//! (`control`) and the joint-stop crossings that error-controlled steps end on (`events`).
+//! (`control`), the joint-stop crossings that error-controlled steps end on (`events`), and
+//! the operating point of a linear model read off a state (`operating`).
 //!
 //! Uses: `step`, `model`, `linalg` and `crate::math`.
 
 pub(crate) mod advance;
 pub(crate) mod control;
 pub(crate) mod events;
+pub(crate) mod operating;
 pub(crate) mod outputs;
 pub(crate) mod state;

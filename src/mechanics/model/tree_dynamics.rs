@@ -1,0 +1,700 @@
+//! The continuous-time dynamics of a tree model in minimal coordinates, generic over the
+//! scalar (`f64`, or a dual number for exact derivatives: `linear`).
+//!
+//! State `x = (q, ν)`, `n` coordinates and `n` rates. Per tree joint J (model order, fixed
+//! joints have none) its coordinates and rates as `joint.J.q`, `joint.J.qd`, except a
+//! spherical joint: `θ` (3, a rotation vector of the child joint frame about the operating
+//! orientation, child frame: `M = M₀ exp(θ̂)`) and `w` (3, the relative angular velocity in the
+//! child frame). Per free body B (before the joints): `r` (3, its frame origin, world), `θ` (3,
+//! `R = exp(θ̂) R₀`, world) and `v`, `ω` (frame origin velocity and angular velocity, world).
+//! The rotation vectors are perturbations: the functions hold at `θ = 0` with their first
+//! derivatives (`exp(θ̂) ≈ I + θ̂ + ½θ̂²`), which is where `linear` evaluates them.
+//!
+//! ```text
+//! kinematics (kinematics.rs, parent before child; J = parent joint frame, c = child joint frame)
+//!   R_J = R_p R_pf,  o_J = o_p + R_p t_pf,  R_c = R_J M(q),  o_c = o_J + R_J τ(q)
+//!   ω_rel = Σ a_k ν_k,  τ̇ = Σ b_k ν_k                        (a_k, b_k in J)
+//!   ω_b = ω_p + R_J ω_rel,   v_c = v_J + ω_p × R_J τ + R_J τ̇
+//!   α_b = α_p + ω_p × R_J ω_rel + R_J (Σ a_k ν̇_k + β_ω),       β_ω = e₁α̇ × a_β β̇ (universal)
+//!   a_c = a_J + α_p × R_Jτ + ω_p × (ω_p × R_Jτ) + 2 ω_p × R_J τ̇ + R_J Σ b_k ν̇_k
+//! inverse dynamics (RNEA, moments about the world origin)
+//!   F_b = m (a_G − g) − f_ext,   N_b = I α + ω × I ω − n_ext + p_G × F_b    (per body)
+//!   Q_k = ω_k · (N − p × F) + u_k · F    (subtree totals; dof k moves the subtree by the
+//!                                          twist ω_k about the point p with velocity u_k there)
+//!   res = Q − (act − k q − c q̇ + stop(q, q̇))   (actuators clamped to ±effort)
+//!   stop(q, q̇) = −k⟨q − upper⟩ + k⟨lower − q⟩ − c (⟨q − upper⟩ + ⟨lower − q⟩) q̇
+//! coordinate rates  q̇ = ν, except  θ̇ = w + ½ θ × w  (spherical),  θ̇ = ω − ½ θ × ω  (free)
+//! energy  E = Σ ½ m|v_G|² + ½ ω·Iω − m g·p_G + Σ ½ k q² + stops   (as `outputs.rs`)
+//! ```
+//!
+//! The loads are those of the step (`step/joint_loads.rs`): actuator torques `±τ n` and slide
+//! forces, springs and dampers per coordinate, a spherical joint's damper `−c(ω_B − ω_A)` and
+//! torques about its parent joint-frame axes, body torques and forces (world frame, at the
+//! centre of mass), gravity. Loop-closing joints and contact are not part of this model
+//! (`linear` refuses them).
+// index loops over coupled fixed-size arrays read closer to the formulas than iterator chains
+#![allow(clippy::needless_range_loop)]
+
+use super::def::{JointType, ModelDef};
+use super::joint::joint_frame;
+use super::runtime::Model;
+use super::stops::Stops;
+use crate::math::{Mat3, Vec3};
+use nalgebra::{Matrix3, RealField, Vector3};
+
+/// A real scalar the dynamics can be evaluated in: `f64`, or a dual number.
+pub trait Real: RealField + Copy {}
+impl<T: RealField + Copy> Real for T {}
+
+/// `x` as a `T`.
+pub fn c<T: Real>(x: f64) -> T {
+    nalgebra::convert(x)
+}
+
+fn cv<T: Real>(v: &Vec3) -> Vector3<T> {
+    v.map(c)
+}
+
+fn cm<T: Real>(m: &Mat3) -> Matrix3<T> {
+    m.map(c)
+}
+
+fn hat<T: Real>(a: &Vector3<T>) -> Matrix3<T> {
+    let z = T::zero();
+    Matrix3::new(z, -a[2], a[1], a[2], z, -a[0], -a[1], a[0], z)
+}
+
+/// Rotation by `t` about the unit axis `n`.
+fn rot<T: Real>(n: &Vector3<T>, t: T) -> Matrix3<T> {
+    let (s, co) = (t.sin(), t.cos());
+    Matrix3::identity() * co + hat(n) * s + n * n.transpose() * (T::one() - co)
+}
+
+/// `exp(θ̂)` to second order: exact with its first derivative at `θ = 0`.
+fn exp_small<T: Real>(th: &Vector3<T>) -> Matrix3<T> {
+    let h = hat(th);
+    Matrix3::identity() + h + h * h * c::<T>(0.5)
+}
+
+/// What one coordinate is.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Coord {
+    /// Coordinate `k` of joint `joint` (a spherical joint's: the rotation vector component).
+    Joint {
+        /// Joint index.
+        joint: usize,
+        /// Component.
+        k: usize,
+    },
+    /// Component `i` of a free body's position (`i < 3`) or rotation vector (`i ≥ 3`).
+    Free {
+        /// Body index.
+        body: usize,
+        /// Component 0..6.
+        i: usize,
+    },
+}
+
+#[derive(Clone, Debug)]
+struct JointData {
+    kind: JointType,
+    parent: Option<usize>,
+    child: usize,
+    pf_t: Vec3,
+    pf_r: Mat3,
+    cf_t: Vec3,
+    cf_r: Mat3,
+    /// The internal joint frame `S` (columns e₁, e₂, n in the user's joint frame).
+    s: Mat3,
+    /// Offset of the joint's coordinates in `q` (and rates in `ν`).
+    at: usize,
+    damping: f64,
+    stiffness: f64,
+    stops: Option<Stops>,
+    effort: f64,
+    input: Option<usize>,
+}
+
+/// A tree model prepared for the minimal-coordinate dynamics, at given damping and stiffness
+/// values and operating orientations.
+#[derive(Clone, Debug)]
+pub struct TreeDynamics {
+    gravity: Vec3,
+    mass: Vec<f64>,
+    com: Vec<Vec3>,
+    inertia: Vec<Mat3>,
+    order: Vec<usize>,
+    /// Per body: its tree joint, or its free-body offset in `q`.
+    parent_of: Vec<Parent>,
+    joints: Vec<Option<JointData>>,
+    torques: Vec<(usize, usize)>,
+    forces: Vec<(usize, usize)>,
+    /// Operating orientation of each spherical joint (`M₀`) and free body (`R₀`), by joint or
+    /// body index.
+    joint_rot0: Vec<Mat3>,
+    body_rot0: Vec<Mat3>,
+    sites: Vec<(usize, Vec3, Mat3)>,
+    coords: Vec<Coord>,
+    nu: usize,
+}
+
+#[derive(Clone, Copy, Debug)]
+enum Parent {
+    Joint(usize),
+    Free(usize),
+}
+
+/// Why a model has no minimal-coordinate dynamics here.
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub enum Unsupported {
+    /// A joint closes a loop.
+    Loop(String),
+    /// The model has collision shapes.
+    Contact,
+}
+
+impl std::fmt::Display for Unsupported {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        match self {
+            Self::Loop(j) => write!(f, "joint '{j}' closes a kinematic loop; linear models of closed loops are not available yet"),
+            Self::Contact => write!(f, "the model has collision shapes; linear models with contact are not available yet (build it without contacts, e.g. `--no-contacts` or without [[collision]])"),
+        }
+    }
+}
+
+/// Per body: pose, twist and acceleration (world frame; `v`, `a` of the frame origin).
+#[derive(Clone, Debug)]
+pub struct Motion<T: Real> {
+    /// Frame origin.
+    pub o: Vec<Vector3<T>>,
+    /// Rotation world ← body.
+    pub r: Vec<Matrix3<T>>,
+    /// Velocity of the frame origin.
+    pub v: Vec<Vector3<T>>,
+    /// Angular velocity.
+    pub w: Vec<Vector3<T>>,
+    /// Acceleration of the frame origin.
+    pub a: Vec<Vector3<T>>,
+    /// Angular acceleration.
+    pub al: Vec<Vector3<T>>,
+    /// Per rate: the twist it gives its subtree, `(ω_k, u_k)` about the point `p_k`.
+    cols: Vec<(Vector3<T>, Vector3<T>, Vector3<T>)>,
+}
+
+impl TreeDynamics {
+    /// Prepares `model` with the joints' current `damping` and `stiffness` (per joint) and the
+    /// operating orientations `joint_rot0` (spherical joints: relative rotation child joint
+    /// frame → parent joint frame; others unused) and `body_rot0` (free bodies; others unused).
+    ///
+    /// # Errors
+    /// [`Unsupported`] for loops and contact.
+    pub fn new(
+        model: &Model,
+        damping: &[f64],
+        stiffness: &[f64],
+        joint_rot0: Vec<Mat3>,
+        body_rot0: Vec<Mat3>,
+    ) -> Result<Self, Unsupported> {
+        let def: &ModelDef = model.def();
+        if let Some(j) = def.joints.iter().find(|j| j.loop_closing) {
+            return Err(Unsupported::Loop(j.name.clone()));
+        }
+        if !def.contact.shapes.is_empty() {
+            return Err(Unsupported::Contact);
+        }
+        let nb = def.bodies.len();
+        let mut coords = Vec::new();
+        let mut parent_of = vec![Parent::Free(0); nb];
+        for f in &def.free_bodies {
+            parent_of[f.body] = Parent::Free(coords.len());
+            coords.extend((0..6).map(|i| Coord::Free { body: f.body, i }));
+        }
+        let mut joints = Vec::with_capacity(def.joints.len());
+        for (j, jd) in def.joints.iter().enumerate() {
+            parent_of[jd.child] = Parent::Joint(j);
+            let at = coords.len();
+            coords.extend((0..jd.kind.dof()).map(|k| Coord::Joint { joint: j, k }));
+            let jt = &model.joints[j];
+            joints.push(Some(JointData {
+                kind: jd.kind,
+                parent: jd.parent,
+                child: jd.child,
+                pf_t: jd.parent_frame.translation,
+                pf_r: jd.parent_frame.rotation,
+                cf_t: jd.child_frame.translation,
+                cf_r: jd.child_frame.rotation,
+                s: joint_frame(jd).unwrap_or_else(|_| Mat3::identity()),
+                at,
+                damping: damping[j],
+                stiffness: stiffness[j],
+                stops: jt.stops,
+                effort: jt.effort,
+                input: jt.input,
+            }));
+        }
+        Ok(Self {
+            gravity: def.gravity,
+            mass: def.bodies.iter().map(|b| b.mass).collect(),
+            com: def.bodies.iter().map(|b| b.com).collect(),
+            inertia: def.bodies.iter().map(|b| b.inertia).collect(),
+            order: model.order.clone(),
+            parent_of,
+            joints,
+            torques: model.body_torques.clone(),
+            forces: model.body_forces.clone(),
+            joint_rot0,
+            body_rot0,
+            sites: def
+                .sites
+                .iter()
+                .map(|s| (s.body, s.frame.translation, s.frame.rotation))
+                .collect(),
+            nu: model.inputs.len(),
+            coords,
+        })
+    }
+
+    /// The coordinates, in order (`n` of them; the rates follow the same order).
+    #[must_use]
+    pub fn coords(&self) -> &[Coord] {
+        &self.coords
+    }
+
+    /// Number of coordinates `n`.
+    #[must_use]
+    pub fn n(&self) -> usize {
+        self.coords.len()
+    }
+
+    /// Number of inputs.
+    #[must_use]
+    pub fn n_inputs(&self) -> usize {
+        self.nu
+    }
+
+    /// Number of bodies.
+    #[must_use]
+    pub fn n_bodies(&self) -> usize {
+        self.mass.len()
+    }
+
+    /// Number of sites.
+    #[must_use]
+    pub fn n_sites(&self) -> usize {
+        self.sites.len()
+    }
+
+    /// Offset of joint `j`'s coordinates in `q`.
+    #[must_use]
+    pub fn joint_at(&self, j: usize) -> Option<usize> {
+        self.joints.get(j)?.as_ref().map(|d| d.at)
+    }
+
+    /// Offset of free body `b`'s coordinates in `q`.
+    #[must_use]
+    pub fn free_at(&self, b: usize) -> Option<usize> {
+        match self.parent_of.get(b)? {
+            Parent::Free(at) => Some(*at),
+            Parent::Joint(_) => None,
+        }
+    }
+
+    /// Relative motion of joint `jd` in its parent joint frame: `M`, `τ`, the rate columns
+    /// `(a_k, b_k)` and the rate-quadratic angular bias `β_ω`.
+    fn local<T: Real>(
+        &self,
+        j: usize,
+        jd: &JointData,
+        q: &[T],
+        nu: &[T],
+    ) -> (
+        Matrix3<T>,
+        Vector3<T>,
+        Vec<(Vector3<T>, Vector3<T>)>,
+        Vector3<T>,
+    ) {
+        let s = cm::<T>(&jd.s);
+        let (e1, e2, n) = (
+            s.column(0).into_owned(),
+            s.column(1).into_owned(),
+            s.column(2).into_owned(),
+        );
+        let z = Vector3::zeros();
+        let q = &q[jd.at..];
+        let nu = &nu[jd.at..];
+        match jd.kind {
+            JointType::Revolute => (rot(&n, q[0]), z, vec![(n, z)], z),
+            JointType::Prismatic => (Matrix3::identity(), n * q[0], vec![(z, n)], z),
+            JointType::Cylindrical => (rot(&n, q[1]), n * q[0], vec![(z, n), (n, z)], z),
+            JointType::Universal => {
+                let ra = rot(&e1, q[0]);
+                let ab = ra * e2;
+                let bias = (e1 * nu[0]).cross(&(ab * nu[1]));
+                (ra * rot(&e2, q[1]), z, vec![(e1, z), (ab, z)], bias)
+            }
+            JointType::Planar => (
+                rot(&n, q[2]),
+                e1 * q[0] + e2 * q[1],
+                vec![(z, e1), (z, e2), (n, z)],
+                z,
+            ),
+            JointType::Spherical => {
+                let th = Vector3::new(q[0], q[1], q[2]);
+                let m = cm::<T>(&self.joint_rot0[j]) * exp_small(&th);
+                let cols = (0..3)
+                    .map(|k| (m.column(k).into_owned(), z))
+                    .collect::<Vec<_>>();
+                (m, z, cols, z)
+            }
+            JointType::Fixed => (Matrix3::identity(), z, Vec::new(), z),
+        }
+    }
+
+    /// Poses, twists and (with `nud`) accelerations of every body at `(q, ν, ν̇)`.
+    #[allow(clippy::too_many_lines)]
+    pub fn motion<T: Real>(&self, q: &[T], nu: &[T], nud: Option<&[T]>) -> Motion<T> {
+        let nb = self.mass.len();
+        let z = Vector3::<T>::zeros();
+        let mut m = Motion {
+            o: vec![z; nb],
+            r: vec![Matrix3::identity(); nb],
+            v: vec![z; nb],
+            w: vec![z; nb],
+            a: vec![z; nb],
+            al: vec![z; nb],
+            cols: vec![(z, z, z); self.coords.len()],
+        };
+        let zeros = vec![T::zero(); self.coords.len()];
+        let nud = nud.unwrap_or(&zeros);
+        for &b in &self.order {
+            match self.parent_of[b] {
+                Parent::Free(at) => {
+                    let th = Vector3::new(q[at + 3], q[at + 4], q[at + 5]);
+                    m.o[b] = Vector3::new(q[at], q[at + 1], q[at + 2]);
+                    m.r[b] = exp_small(&th) * cm::<T>(&self.body_rot0[b]);
+                    m.v[b] = Vector3::new(nu[at], nu[at + 1], nu[at + 2]);
+                    m.w[b] = Vector3::new(nu[at + 3], nu[at + 4], nu[at + 5]);
+                    m.a[b] = Vector3::new(nud[at], nud[at + 1], nud[at + 2]);
+                    m.al[b] = Vector3::new(nud[at + 3], nud[at + 4], nud[at + 5]);
+                    for i in 0..3 {
+                        let e = Vector3::ith(i, T::one());
+                        m.cols[at + i] = (z, e, m.o[b]);
+                        m.cols[at + 3 + i] = (e, z, m.o[b]);
+                    }
+                }
+                Parent::Joint(j) => {
+                    let jd = self.joints[j].as_ref().expect("tree joint");
+                    let (o_p, r_p, v_p, w_p, a_p, al_p) = match jd.parent {
+                        Some(p) => (m.o[p], m.r[p], m.v[p], m.w[p], m.a[p], m.al[p]),
+                        None => (z, Matrix3::identity(), z, z, z, z),
+                    };
+                    let (mrel, tau, cols, bias_w) = self.local(j, jd, q, nu);
+                    let r_j = r_p * cm::<T>(&jd.pf_r);
+                    let arm = r_p * cv::<T>(&jd.pf_t);
+                    let o_j = o_p + arm;
+                    let v_j = v_p + w_p.cross(&arm);
+                    let a_j = a_p + al_p.cross(&arm) + w_p.cross(&w_p.cross(&arm));
+                    let (mut w_rel, mut tau_d, mut w_acc, mut tau_acc) = (z, z, bias_w, z);
+                    for (k, (ak, bk)) in cols.iter().enumerate() {
+                        let (nk, ndk) = (nu[jd.at + k], nud[jd.at + k]);
+                        w_rel += ak * nk;
+                        tau_d += bk * nk;
+                        w_acc += ak * ndk;
+                        tau_acc += bk * ndk;
+                    }
+                    let tau_w = r_j * tau;
+                    let tau_dw = r_j * tau_d;
+                    let r_c = r_j * mrel;
+                    let o_c = o_j + tau_w;
+                    let w_c = w_p + r_j * w_rel;
+                    let v_c = v_j + w_p.cross(&tau_w) + tau_dw;
+                    let al_c = al_p + w_p.cross(&(r_j * w_rel)) + r_j * w_acc;
+                    let a_c = a_j
+                        + al_p.cross(&tau_w)
+                        + w_p.cross(&w_p.cross(&tau_w))
+                        + w_p.cross(&tau_dw) * c::<T>(2.0)
+                        + r_j * tau_acc;
+                    let r_b = r_c * cm::<T>(&jd.cf_r).transpose();
+                    let o_b = o_c - r_b * cv::<T>(&jd.cf_t);
+                    let arm2 = o_b - o_c;
+                    m.o[b] = o_b;
+                    m.r[b] = r_b;
+                    m.w[b] = w_c;
+                    m.v[b] = v_c + w_c.cross(&arm2);
+                    m.al[b] = al_c;
+                    m.a[b] = a_c + al_c.cross(&arm2) + w_c.cross(&w_c.cross(&arm2));
+                    for (k, (ak, bk)) in cols.iter().enumerate() {
+                        m.cols[jd.at + k] = (r_j * ak, r_j * bk, o_c);
+                    }
+                }
+            }
+        }
+        m
+    }
+
+    /// Centre of mass of body `b` (world) and its velocity, at `m`.
+    fn com_of<T: Real>(&self, m: &Motion<T>, b: usize) -> (Vector3<T>, Vector3<T>) {
+        let rc = m.r[b] * cv::<T>(&self.com[b]);
+        (m.o[b] + rc, m.v[b] + m.w[b].cross(&rc))
+    }
+
+    /// World-frame inertia about the centre of mass.
+    fn inertia_world<T: Real>(&self, m: &Motion<T>, b: usize) -> Matrix3<T> {
+        m.r[b] * cm::<T>(&self.inertia[b]) * m.r[b].transpose()
+    }
+
+    /// The inverse-dynamics residual `Q(q, ν, ν̇) − Q_applied(q, ν, u)` (len `n`). With
+    /// `inertial_only`, gravity, inputs, springs, dampers and stops are left out (then the
+    /// residual is `M(q) ν̇ + C(q, ν) ν`).
+    #[allow(clippy::too_many_lines)]
+    pub fn residual<T: Real>(
+        &self,
+        q: &[T],
+        nu: &[T],
+        nud: &[T],
+        u: &[T],
+        inertial_only: bool,
+    ) -> Vec<T> {
+        let m = self.motion(q, nu, Some(nud));
+        let nb = self.mass.len();
+        let z = Vector3::<T>::zeros();
+        let g = if inertial_only {
+            z
+        } else {
+            cv::<T>(&self.gravity)
+        };
+        let (mut f, mut nn) = (vec![z; nb], vec![z; nb]);
+        // applied external torques and forces (world), subtracted below
+        let (mut fe, mut ne) = (vec![z; nb], vec![z; nb]);
+        if !inertial_only {
+            for &(b, i) in &self.torques {
+                ne[b] += Vector3::new(u[i], u[i + 1], u[i + 2]);
+            }
+            for &(b, i) in &self.forces {
+                fe[b] += Vector3::new(u[i], u[i + 1], u[i + 2]);
+            }
+            for jd in self.joints.iter().flatten() {
+                if jd.kind != JointType::Spherical {
+                    continue;
+                }
+                let r_j = match jd.parent {
+                    Some(p) => m.r[p],
+                    None => Matrix3::identity(),
+                } * cm::<T>(&jd.pf_r);
+                let w_a = jd.parent.map_or(z, |p| m.w[p]);
+                let mut t = (m.w[jd.child] - w_a) * (-c::<T>(jd.damping));
+                if let Some(i) = jd.input {
+                    for k in 0..3 {
+                        t += r_j.column(k).into_owned() * u[i + k];
+                    }
+                }
+                ne[jd.child] += t;
+                if let Some(p) = jd.parent {
+                    ne[p] -= t;
+                }
+            }
+        }
+        for b in 0..nb {
+            let mass = c::<T>(self.mass[b]);
+            let rc = m.r[b] * cv::<T>(&self.com[b]);
+            let pg = m.o[b] + rc;
+            let ag = m.a[b] + m.al[b].cross(&rc) + m.w[b].cross(&m.w[b].cross(&rc));
+            let iw = self.inertia_world(&m, b);
+            let fb = (ag - g) * mass - fe[b];
+            let nb_ = iw * m.al[b] + m.w[b].cross(&(iw * m.w[b])) - ne[b];
+            f[b] = fb;
+            nn[b] = nb_ + pg.cross(&fb);
+        }
+        for &b in self.order.iter().rev() {
+            let p = match self.parent_of[b] {
+                Parent::Joint(j) => self.joints[j].as_ref().and_then(|d| d.parent),
+                Parent::Free(_) => None,
+            };
+            if let Some(p) = p {
+                let (fb, nb_) = (f[b], nn[b]);
+                f[p] += fb;
+                nn[p] += nb_;
+            }
+        }
+        let mut res = vec![T::zero(); self.coords.len()];
+        for (k, co) in self.coords.iter().enumerate() {
+            let b = match co {
+                Coord::Joint { joint, .. } => self.joints[*joint].as_ref().expect("joint").child,
+                Coord::Free { body, .. } => *body,
+            };
+            let (wk, uk, pk) = &m.cols[k];
+            res[k] = wk.dot(&(nn[b] - pk.cross(&f[b]))) + uk.dot(&f[b]);
+        }
+        if !inertial_only {
+            for jd in self.joints.iter().flatten() {
+                if jd.kind == JointType::Spherical {
+                    continue;
+                }
+                for k in 0..jd.kind.dof() {
+                    let (qk, vk) = (q[jd.at + k], nu[jd.at + k]);
+                    let mut gen = -qk * c::<T>(jd.stiffness) - vk * c::<T>(jd.damping);
+                    if let Some(i) = jd.input {
+                        let (act, e) = (u[i + k], jd.effort);
+                        gen += if act > c::<T>(e) {
+                            c::<T>(e)
+                        } else if act < c::<T>(-e) {
+                            c::<T>(-e)
+                        } else {
+                            act
+                        };
+                    }
+                    if let Some(st) = &jd.stops {
+                        let pu = qk - c::<T>(st.upper);
+                        let pw = c::<T>(st.lower) - qk;
+                        let pu = if pu > T::zero() { pu } else { T::zero() };
+                        let pw = if pw > T::zero() { pw } else { T::zero() };
+                        gen +=
+                            (pw - pu) * c::<T>(st.stiffness) - (pu + pw) * vk * c::<T>(st.damping);
+                    }
+                    res[jd.at + k] -= gen;
+                }
+            }
+        }
+        res
+    }
+
+    /// The coordinate rates `q̇ = N(q) ν` (module formulas).
+    pub fn qdot<T: Real>(&self, q: &[T], nu: &[T]) -> Vec<T> {
+        let mut out = nu.to_vec();
+        let half = c::<T>(0.5);
+        let mut fix = |at: usize, sign: T| {
+            let th = Vector3::new(q[at], q[at + 1], q[at + 2]);
+            let w = Vector3::new(nu[at], nu[at + 1], nu[at + 2]);
+            let d = th.cross(&w) * (half * sign);
+            for i in 0..3 {
+                out[at + i] += d[i];
+            }
+        };
+        for jd in self.joints.iter().flatten() {
+            if jd.kind == JointType::Spherical {
+                fix(jd.at, T::one());
+            }
+        }
+        for p in &self.parent_of {
+            if let Parent::Free(at) = p {
+                fix(at + 3, -T::one());
+            }
+        }
+        out
+    }
+
+    /// The mechanical energy (module formula) at `(q, ν)`.
+    pub fn energy<T: Real>(&self, q: &[T], nu: &[T]) -> T {
+        let m = self.motion(q, nu, None);
+        let g = cv::<T>(&self.gravity);
+        let mut e = T::zero();
+        for b in 0..self.mass.len() {
+            let mass = c::<T>(self.mass[b]);
+            let (pg, vg) = self.com_of(&m, b);
+            let iw = self.inertia_world(&m, b);
+            e +=
+                (vg.dot(&vg) * mass + m.w[b].dot(&(iw * m.w[b]))) * c::<T>(0.5) - pg.dot(&g) * mass;
+        }
+        for jd in self.joints.iter().flatten() {
+            if jd.kind == JointType::Spherical {
+                continue;
+            }
+            for k in 0..jd.kind.dof() {
+                let qk = q[jd.at + k];
+                e += qk * qk * c::<T>(0.5 * jd.stiffness);
+                if let Some(st) = &jd.stops {
+                    for p in [qk - c::<T>(st.upper), c::<T>(st.lower) - qk] {
+                        if p > T::zero() {
+                            e += p * p * c::<T>(0.5 * st.stiffness);
+                        }
+                    }
+                }
+            }
+        }
+        e
+    }
+
+    /// Linear momentum and angular momentum about the world origin at `(q, ν)`.
+    pub fn momentum<T: Real>(&self, q: &[T], nu: &[T]) -> (Vector3<T>, Vector3<T>) {
+        let m = self.motion(q, nu, None);
+        let (mut p, mut l) = (Vector3::zeros(), Vector3::zeros());
+        for b in 0..self.mass.len() {
+            let mass = c::<T>(self.mass[b]);
+            let (pg, vg) = self.com_of(&m, b);
+            let iw = self.inertia_world(&m, b);
+            p += vg * mass;
+            l += pg.cross(&(vg * mass)) + iw * m.w[b];
+        }
+        (p, l)
+    }
+
+    /// Pose and twist of site `s` (world) at `m`: origin, rotation, velocity, angular velocity.
+    pub fn site<T: Real>(
+        &self,
+        m: &Motion<T>,
+        s: usize,
+    ) -> (Vector3<T>, Matrix3<T>, Vector3<T>, Vector3<T>) {
+        let (b, t, r) = &self.sites[s];
+        let arm = m.r[*b] * cv::<T>(t);
+        (
+            m.o[*b] + arm,
+            m.r[*b] * cm::<T>(r),
+            m.v[*b] + m.w[*b].cross(&arm),
+            m.w[*b],
+        )
+    }
+
+    /// Whether joint `j` is spherical.
+    #[must_use]
+    pub fn is_spherical(&self, j: usize) -> bool {
+        self.joints
+            .get(j)
+            .and_then(Option::as_ref)
+            .is_some_and(|d| d.kind == JointType::Spherical)
+    }
+
+    /// The operating orientation of spherical joint `j` (`M₀`).
+    #[must_use]
+    pub fn joint_rot0(&self, j: usize) -> Mat3 {
+        self.joint_rot0[j]
+    }
+
+    /// The accelerations `ν̇` at `(q, ν, u)` (f64), with the mass matrix's LU.
+    ///
+    /// # Errors
+    /// A message when the mass matrix is singular (a body without mass at the end of a chain).
+    pub fn accelerations(
+        &self,
+        q: &[f64],
+        nu: &[f64],
+        u: &[f64],
+    ) -> Result<(Vec<f64>, nalgebra::LU<f64, nalgebra::Dyn, nalgebra::Dyn>), String> {
+        let n = self.coords.len();
+        let zero = vec![0.0; n];
+        let bias = self.residual(q, nu, &zero, u, false);
+        let mut mm = nalgebra::DMatrix::<f64>::zeros(n, n);
+        let mut e = vec![0.0; n];
+        for i in 0..n {
+            e[i] = 1.0;
+            let col = self.residual(q, &zero, &e, &zero_inputs(self.nu), true);
+            e[i] = 0.0;
+            for r in 0..n {
+                mm[(r, i)] = col[r];
+            }
+        }
+        let lu = mm.lu();
+        let rhs = nalgebra::DVector::from_iterator(n, bias.iter().map(|x| -x));
+        let acc = lu
+            .solve(&rhs)
+            .ok_or_else(|| "the joint-space mass matrix is singular".to_string())?;
+        Ok((acc.iter().copied().collect(), lu))
+    }
+}
+
+fn zero_inputs(n: usize) -> Vec<f64> {
+    vec![0.0; n]
+}
+
+#[cfg(test)]
+#[path = "tree_dynamics_tests.rs"]
+mod tests;
