@@ -8,6 +8,7 @@
 mod access;
 mod builder;
 pub mod fmi3;
+pub mod linear;
 mod params;
 mod table;
 mod types;

@@ -5,7 +5,9 @@ mod commands;
 mod error;
 mod import_args;
 mod input;
+mod linearize;
 mod load;
+mod matrix_file;
 mod output;
 mod overrides;
 mod plot;
@@ -58,6 +60,15 @@ pub enum Command {
     /// Run MODEL natively and write every output variable every --step seconds as CSV.
     #[command(allow_negative_numbers = true)]
     Simulate(simulate::SimulateArgs),
+    /// The exact linear model of MODEL at an operating point, for control design: the
+    /// continuous-time A, B, C, D (dx/dt = A dx + B du, dy = C dx + D du) in minimal
+    /// coordinates x = (joint coordinates and a floating base's r and rotation vector theta,
+    /// then their rates), from analytic derivatives (not finite differences), written as
+    /// .json, .npz or .mat with the names of x, u, y and the operating point (x0, u0, y0,
+    /// xdot0, t0). Trees without collision shapes; closed loops, contact and the discrete-time
+    /// Ad, Bd (--step) are not available yet.
+    #[command(allow_negative_numbers = true)]
+    Linearize(linearize::LinearizeArgs),
     /// Write a 3-D replay of a result CSV: one self-contained HTML file (works offline) that
     /// places the bodies from their recorded poses, with play/pause, time slider, speed, loop,
     /// orbit/pan/zoom, frames, sites, a trace and a panel of joint angles and energy - work.
@@ -135,6 +146,7 @@ pub fn run(cli: Cli) -> ExitCode {
         Command::Check { model, urdf } => commands::check(&model, &urdf),
         Command::Describe { model, fmi, urdf } => commands::describe(&model, &fmi, &urdf),
         Command::Simulate(args) => simulate::run(&args),
+        Command::Linearize(args) => linearize::run(&args),
         Command::Animate(args) => animate::run(&args),
         Command::Build {
             model,

@@ -138,6 +138,18 @@ pub struct TreeDynamics {
     nu: usize,
 }
 
+/// A joint's relative motion in its parent joint frame: `M`, `τ`, the rate columns `(a_k, b_k)`
+/// and the angular bias `β_ω`.
+type Local<T> = (
+    Matrix3<T>,
+    Vector3<T>,
+    Vec<(Vector3<T>, Vector3<T>)>,
+    Vector3<T>,
+);
+
+/// The mass matrix's LU factors.
+pub type MassLu = nalgebra::LU<f64, nalgebra::Dyn, nalgebra::Dyn>;
+
 #[derive(Clone, Copy, Debug)]
 enum Parent {
     Joint(usize),
@@ -301,18 +313,7 @@ impl TreeDynamics {
 
     /// Relative motion of joint `jd` in its parent joint frame: `M`, `τ`, the rate columns
     /// `(a_k, b_k)` and the rate-quadratic angular bias `β_ω`.
-    fn local<T: Real>(
-        &self,
-        j: usize,
-        jd: &JointData,
-        q: &[T],
-        nu: &[T],
-    ) -> (
-        Matrix3<T>,
-        Vector3<T>,
-        Vec<(Vector3<T>, Vector3<T>)>,
-        Vector3<T>,
-    ) {
+    fn local<T: Real>(&self, j: usize, jd: &JointData, q: &[T], nu: &[T]) -> Local<T> {
         let s = cm::<T>(&jd.s);
         let (e1, e2, n) = (
             s.column(0).into_owned(),
@@ -644,6 +645,17 @@ impl TreeDynamics {
         )
     }
 
+    /// Sets the operating orientation of spherical joint `j` (child joint frame → parent joint
+    /// frame).
+    pub fn set_joint_rot0(&mut self, j: usize, m: Mat3) {
+        self.joint_rot0[j] = m;
+    }
+
+    /// Sets the operating orientation of free body `b` (world ← body).
+    pub fn set_body_rot0(&mut self, b: usize, r: Mat3) {
+        self.body_rot0[b] = r;
+    }
+
     /// Whether joint `j` is spherical.
     #[must_use]
     pub fn is_spherical(&self, j: usize) -> bool {
@@ -668,7 +680,7 @@ impl TreeDynamics {
         q: &[f64],
         nu: &[f64],
         u: &[f64],
-    ) -> Result<(Vec<f64>, nalgebra::LU<f64, nalgebra::Dyn, nalgebra::Dyn>), String> {
+    ) -> Result<(Vec<f64>, MassLu), String> {
         let n = self.coords.len();
         let zero = vec![0.0; n];
         let bias = self.residual(q, nu, &zero, u, false);
