@@ -30,8 +30,8 @@
 //! - a step whose outputs are not all finite is rolled back ([`Failure::NonFinite`]).
 
 use crate::mechanics::{
-    above_floor, controlled_step, step_state, Model, ModelDef, ModelError, SolverSettings, State,
-    StepError, Verdict,
+    above_floor, controlled_step, step_state, Model, ModelDef, ModelError, Operating,
+    SolverSettings, State, StepError, Verdict,
 };
 use thiserror::Error;
 
@@ -92,6 +92,21 @@ pub struct AdvanceError {
     /// Time of the last good state, at which the run now stands, s: the start of the
     /// communication step after a roll-back, the progress made after [`Failure::WorkBound`].
     pub last_good_time: f64,
+}
+
+/// Joint accelerations at one state ([`Simulation::accelerations`]).
+#[derive(Clone, Debug)]
+pub struct Accelerations {
+    at: Vec<Option<usize>>,
+    nud: Vec<f64>,
+}
+
+impl Accelerations {
+    /// Acceleration `k` of joint `joint` (rad/s² or m/s²).
+    #[must_use]
+    pub fn get(&self, joint: usize, k: usize) -> Option<f64> {
+        self.nud.get(self.at.get(joint).copied()?? + k).copied()
+    }
 }
 
 /// A running simulation: the model and its state.
@@ -176,6 +191,28 @@ impl Simulation {
     #[must_use]
     pub fn state(&self) -> &State {
         &self.state
+    }
+
+    /// The operating point of the current state in minimal coordinates (trees without contact;
+    /// `mechanics::Operating`).
+    ///
+    /// # Errors
+    /// Why the model has none (a loop, contact).
+    pub fn operating(&self) -> Result<Operating, String> {
+        Operating::of(&self.model, &self.state).map_err(|e| e.to_string())
+    }
+
+    /// The joint accelerations at the current state and inputs (the outputs `joint.J.qdd`).
+    ///
+    /// # Errors
+    /// Why there are none: a loop, contact, or a singular joint-space mass matrix.
+    pub fn accelerations(&self) -> Result<Accelerations, String> {
+        let op = self.operating()?;
+        let (nud, _) = op.dynamics.accelerations(&op.q, &op.nu, &op.u)?;
+        let at = (0..self.model.def().joints.len())
+            .map(|j| op.dynamics.joint_at(j))
+            .collect();
+        Ok(Accelerations { at, nud })
     }
 
     /// Recomputes the outputs from the current state (after a tunable parameter changed

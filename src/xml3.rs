@@ -7,7 +7,8 @@
 
 use crate::fmu::Category;
 use crate::variables::fmi3::{Table3, Var3, TIME_VR};
-use crate::variables::{Causality, Initial, VarType, Variable, VariableTable};
+use crate::variables::linear::states;
+use crate::variables::{Accessor, Causality, Initial, VarType, Variable, VariableTable};
 use crate::xml::{
     common_attributes, default_experiment, real, unit_definitions, used_units, Meta,
     GENERATION_TOOL, W,
@@ -21,16 +22,81 @@ pub const FMI_VERSION: &str = "3.0";
 
 /// The `<CoSimulation>` attributes after `modelIdentifier`, in the FMI 3 spellings
 /// (`fmi3InterfaceType.xsd`: `canGetAndSetFMUState`, `providesDirectionalDerivatives`, …).
-/// Early return, event mode and derivatives are not offered (yet): their flags are false.
-pub const CO_SIMULATION: [(&str, &str); 7] = [
-    ("canHandleVariableCommunicationStepSize", "true"),
-    ("canGetAndSetFMUState", "true"),
-    ("canSerializeFMUState", "true"),
-    ("providesDirectionalDerivatives", "false"),
-    ("providesAdjointDerivatives", "false"),
-    ("mightReturnEarlyFromDoStep", "false"),
-    ("hasEventMode", "false"),
-];
+/// Directional and adjoint derivatives where the model declares states
+/// (`variables::linear::states`); early return and event mode are not offered (yet).
+#[must_use]
+pub fn co_simulation(derivatives: bool) -> [(&'static str, &'static str); 7] {
+    let d = if derivatives { "true" } else { "false" };
+    [
+        ("canHandleVariableCommunicationStepSize", "true"),
+        ("canGetAndSetFMUState", "true"),
+        ("canSerializeFMUState", "true"),
+        ("providesDirectionalDerivatives", d),
+        ("providesAdjointDerivatives", d),
+        ("mightReturnEarlyFromDoStep", "false"),
+        ("hasEventMode", "false"),
+    ]
+}
+
+/// The FMI 3 states: value references of each state variable (`joint.J.q`), its derivative
+/// (`joint.J.qd`) and the rate's derivative (`joint.J.qdd`), one per joint.
+struct States3 {
+    q: Vec<u32>,
+    qd: Vec<u32>,
+    qdd: Vec<u32>,
+    inputs: Vec<u32>,
+}
+
+fn states3(table: &VariableTable, t3: &Table3) -> Option<States3> {
+    let st = states(table)?;
+    let vr3 = |i: usize| -> Option<u32> {
+        let vr = table.vars[i].vr;
+        t3.vars
+            .iter()
+            .find(|v| v.members.contains(&vr))
+            .map(|v| v.vr)
+    };
+    let uniq = |xs: &[usize]| -> Option<Vec<u32>> {
+        let mut out: Vec<u32> = Vec::new();
+        for &i in xs {
+            let v = vr3(i)?;
+            if !out.contains(&v) {
+                out.push(v);
+            }
+        }
+        Some(out)
+    };
+    let inputs: Vec<usize> = (0..table.vars.len())
+        .filter(|&i| table.vars[i].causality == Causality::Input)
+        .collect();
+    Some(States3 {
+        q: uniq(&st.q)?,
+        qd: uniq(&st.qd)?,
+        qdd: uniq(&st.qdd)?,
+        inputs: uniq(&inputs)?,
+    })
+}
+
+/// The `dependencies` of output `v` (FMI 3 value references), as in FMI 2 (`xml.rs`).
+fn dependencies3(table: &VariableTable, st: Option<&States3>, v: &Var3) -> io::Result<String> {
+    let Some(st) = st else {
+        return Ok(String::new());
+    };
+    let f = first(table, v)?;
+    if matches!(f.accessor, Accessor::Work | Accessor::ConstraintResidual) {
+        return Ok(String::new());
+    }
+    let mut deps: Vec<u32> = st.q.iter().chain(&st.qd).copied().collect();
+    if matches!(f.accessor, Accessor::JointQdd { .. }) {
+        deps.extend(&st.inputs);
+    }
+    deps.sort_unstable();
+    Ok(deps
+        .iter()
+        .map(ToString::to_string)
+        .collect::<Vec<_>>()
+        .join(" "))
+}
 
 /// The unit of `time`.
 const TIME_UNIT: &str = "s";
@@ -66,7 +132,7 @@ fn start(table: &VariableTable, v: &Var3, ty: VarType) -> Option<String> {
     starts.map(|s| s.join(" "))
 }
 
-fn variable(w: &mut W, table: &VariableTable, v: &Var3) -> io::Result<()> {
+fn variable(w: &mut W, table: &VariableTable, v: &Var3, derivative: Option<u32>) -> io::Result<()> {
     let f = first(table, v)?;
     let tag = match f.ty {
         VarType::Real => "Float64",
@@ -85,6 +151,9 @@ fn variable(w: &mut W, table: &VariableTable, v: &Var3) -> io::Result<()> {
     if let Some(s) = &start {
         e = e.with_attribute(("start", s.as_str()));
     }
+    if let Some(d) = derivative {
+        e = e.with_attribute(("derivative", d.to_string().as_str()));
+    }
     if v.dims.is_empty() {
         e.write_empty()?;
     } else {
@@ -100,25 +169,48 @@ fn variable(w: &mut W, table: &VariableTable, v: &Var3) -> io::Result<()> {
     Ok(())
 }
 
-fn model_structure(w: &mut W, table: &VariableTable, t3: &Table3) -> io::Result<()> {
+fn model_structure(
+    w: &mut W,
+    table: &VariableTable,
+    t3: &Table3,
+    st: Option<&States3>,
+) -> io::Result<()> {
     let mut outputs = Vec::new();
     let mut initial = Vec::new();
     for v in &t3.vars {
         let f = first(table, v)?;
         if f.causality == Causality::Output {
-            outputs.push(v.vr);
+            outputs.push((v.vr, dependencies3(table, st, v)?));
             if f.initial == Initial::Calculated {
                 initial.push(v.vr);
             }
         }
     }
+    let derivatives: Vec<(u32, String)> = match st {
+        Some(st) => {
+            let mut d: Vec<(u32, String)> = st.qd.iter().map(|&vr| (vr, vr.to_string())).collect();
+            for &vr in &st.qdd {
+                let v = t3.by_vr(vr).ok_or_else(|| {
+                    io::Error::new(io::ErrorKind::InvalidData, "no acceleration variable")
+                })?;
+                d.push((vr, dependencies3(table, Some(st), v)?));
+            }
+            d
+        }
+        None => Vec::new(),
+    };
     w.create_element("ModelStructure")
         .write_inner_content(|w| {
-            for vr in &outputs {
-                // no direct feedthrough: outputs are states of the last step (as in FMI 2)
+            for (vr, deps) in &outputs {
                 w.create_element("Output")
                     .with_attribute(("valueReference", vr.to_string().as_str()))
-                    .with_attribute(("dependencies", ""))
+                    .with_attribute(("dependencies", deps.as_str()))
+                    .write_empty()?;
+            }
+            for (vr, deps) in &derivatives {
+                w.create_element("ContinuousStateDerivative")
+                    .with_attribute(("valueReference", vr.to_string().as_str()))
+                    .with_attribute(("dependencies", deps.as_str()))
                     .write_empty()?;
             }
             for vr in &initial {
@@ -140,6 +232,7 @@ fn model_structure(w: &mut W, table: &VariableTable, t3: &Table3) -> io::Result<
 /// Only I/O errors of the in-memory writer (none in practice).
 pub fn write_model_description3(table: &VariableTable, meta: &Meta) -> io::Result<String> {
     let t3 = Table3::new(table);
+    let st = states3(table, &t3);
     let mut w = Writer::new_with_indent(Vec::new(), b' ', 2);
     w.write_event(Event::Decl(BytesDecl::new("1.0", Some("UTF-8"), None)))?;
     w.write_event(Event::Comment(BytesText::from_escaped(
@@ -156,7 +249,7 @@ pub fn write_model_description3(table: &VariableTable, meta: &Meta) -> io::Resul
             let mut cs = w
                 .create_element("CoSimulation")
                 .with_attribute(("modelIdentifier", meta.name.as_str()));
-            for (k, v) in CO_SIMULATION {
+            for (k, v) in co_simulation(st.is_some()) {
                 cs = cs.with_attribute((k, v));
             }
             cs.write_empty()?;
@@ -187,11 +280,17 @@ pub fn write_model_description3(table: &VariableTable, meta: &Meta) -> io::Resul
                         .with_attribute(("unit", TIME_UNIT))
                         .write_empty()?;
                     for v in &t3.vars {
-                        variable(w, table, v)?;
+                        let derivative = st.as_ref().and_then(|st| {
+                            let of = |from: &[u32], to: &[u32]| {
+                                from.iter().position(|&x| x == v.vr).map(|k| to[k])
+                            };
+                            of(&st.qd, &st.q).or_else(|| of(&st.qdd, &st.qd))
+                        });
+                        variable(w, table, v, derivative)?;
                     }
                     Ok(())
                 })?;
-            model_structure(w, table, &t3)?;
+            model_structure(w, table, &t3, st.as_ref())?;
             Ok(())
         })?;
     let mut bytes = w.into_inner();

@@ -154,6 +154,10 @@ pub fn run(args: &SimulateArgs) -> Result<(), CliError> {
     }
     let outputs: Vec<_> = table.with_causality(Causality::Output).collect();
     let columns = select::select(&outputs, &select::patterns(&args.outputs))?;
+    // joint accelerations are computed once per row, and only when a column wants them
+    let is_qdd = |k: &usize| matches!(outputs[*k].accessor, Accessor::JointQdd { .. });
+    let has_qdd = columns.iter().any(is_qdd)
+        || (args.animate.is_some() && (0..outputs.len()).any(|k| is_qdd(&k)));
     let plotted: Vec<usize> = outputs
         .iter()
         .enumerate()
@@ -201,9 +205,14 @@ pub fn run(args: &SimulateArgs) -> Result<(), CliError> {
                full: &mut Option<Vec<u8>>|
      -> Result<(), CliError> {
         let t = sim.time();
+        let acc = has_qdd.then(|| sim.accelerations().ok()).flatten();
         let values: Vec<f64> = outputs
             .iter()
-            .map(|v| read_state(v.accessor, sim.state()).unwrap_or(f64::NAN))
+            .map(|v| match v.accessor {
+                Accessor::JointQdd { joint, k } => acc.as_ref().and_then(|a| a.get(joint, k)),
+                a => read_state(a, sim.state()),
+            })
+            .map(|x| x.unwrap_or(f64::NAN))
             .collect();
         for (s, &k) in series.iter_mut().zip(&plotted) {
             s.points.push((t, values[k]));

@@ -3,7 +3,6 @@
 
 use super::guard::{ffi_fn, slice, slice_mut, with_instance};
 use super::types::*;
-use crate::fmu::FmuError;
 
 ffi_fn! {
     /// `fmi2GetReal` (FMI 2.0.4 §2.1.7).
@@ -119,15 +118,19 @@ ffi_fn! {
 }
 
 ffi_fn! {
-    /// `fmi2GetDirectionalDerivative` (FMI 2.0.4 §2.1.9): not provided
-    /// (`providesDirectionalDerivative="false"`); returns `fmi2Error` with a message.
+    /// `fmi2GetDirectionalDerivative` (FMI 2.0.4 §2.1.9): exact derivatives of outputs and
+    /// state derivatives with respect to states and inputs at the current communication point
+    /// (`providesDirectionalDerivative="true"` for trees without contact; otherwise
+    /// `fmi2Error` with a message). Bad references, NULL arrays and NaN seeds are refused.
     fn fmi2GetDirectionalDerivative(c: fmi2Component, vUnknown_ref: *const fmi2ValueReference, nUnknown: usize, vKnown_ref: *const fmi2ValueReference, nKnown: usize, dvKnown: *const fmi2Real, dvUnknown: *mut fmi2Real) -> fmi2Status {
-        let _ = (vUnknown_ref, nUnknown, vKnown_ref, nKnown, dvKnown, dvUnknown);
-        // SAFETY: FMI contract on c.
+        // SAFETY: FMI contract: the unknown arrays hold nUnknown and the known ones nKnown elements.
         unsafe {
             with_instance(c, "fmi2GetDirectionalDerivative", |i| {
-                i.check(crate::fmu::Op::GetDirectionalDerivative, "fmi2GetDirectionalDerivative")?;
-                Err(FmuError::Unsupported("directional derivatives are not provided (providesDirectionalDerivative=\"false\")".into()))
+                let unknowns = slice(vUnknown_ref, nUnknown, "vUnknown_ref")?;
+                let knowns = slice(vKnown_ref, nKnown, "vKnown_ref")?;
+                let seed = slice(dvKnown, nKnown, "dvKnown")?;
+                let out = slice_mut(dvUnknown, nUnknown, "dvUnknown")?;
+                i.directional_derivative(unknowns, knowns, seed, out)
             })
         }
     } ?= fmi2Fatal

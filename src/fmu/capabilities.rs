@@ -26,9 +26,9 @@ pub struct Capabilities {
     pub provides_directional_derivative: bool,
 }
 
-/// What this FMU can do. `fmi2GetDirectionalDerivative`, `fmi2SetRealInputDerivatives` and
-/// `fmi2GetRealOutputDerivatives` are exported (all 34 functions must be) but return `fmi2Error`
-/// because the matching flags are false.
+/// What this FMU can do. `fmi2SetRealInputDerivatives` and `fmi2GetRealOutputDerivatives` are
+/// exported (all 34 functions must be) but return `fmi2Error` because the matching flags are
+/// false; `providesDirectionalDerivative` is per model ([`Capabilities::with_directional`]).
 pub const CAPABILITIES: Capabilities = Capabilities {
     needs_execution_tool: false,
     can_handle_variable_communication_step_size: true,
@@ -43,6 +43,14 @@ pub const CAPABILITIES: Capabilities = Capabilities {
 };
 
 impl Capabilities {
+    /// These flags with `providesDirectionalDerivative` as given (true for models that declare
+    /// states: `variables::linear::states`).
+    #[must_use]
+    pub const fn with_directional(mut self, provides: bool) -> Self {
+        self.provides_directional_derivative = provides;
+        self
+    }
+
     /// The `<CoSimulation>` attributes (name, value) in a fixed order (after
     /// `modelIdentifier`), as written to modelDescription.xml.
     #[must_use]

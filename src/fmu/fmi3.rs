@@ -140,6 +140,7 @@ impl Instance {
         mut put: impl FnMut(usize, f64),
     ) -> Result<(), FmuError> {
         let mut k = 0;
+        let acc = super::params::AccCache::new();
         for &vr in vrs {
             if vr == TIME_VR && base == Base::Real {
                 put(k, self.time());
@@ -156,7 +157,7 @@ impl Instance {
                     .table
                     .by_vr(m)
                     .map_or_else(|| self.lookup(m, base), Ok)?;
-                put(k, self.value(element)?);
+                put(k, self.value(element, &acc)?);
                 k += 1;
             }
         }

@@ -21,6 +21,7 @@
 pub mod api;
 pub mod capabilities;
 pub mod contract;
+mod derivatives;
 mod fmi3;
 pub mod guid;
 pub mod instance;

@@ -65,6 +65,9 @@ fn set_forbidden(mode: Mode, v: &Variable) -> Option<String> {
     }
 }
 
+/// The joint accelerations of one get call, computed at its first `joint.J.qdd`.
+pub(super) type AccCache = std::cell::OnceCell<Result<crate::sim::Accelerations, String>>;
+
 impl Instance {
     pub(super) fn lookup(&self, vr: u32, base: Base) -> Result<&Variable, FmuError> {
         self.index
@@ -76,9 +79,21 @@ impl Instance {
             })
     }
 
-    pub(super) fn value(&self, v: &Variable) -> Result<f64, FmuError> {
+    /// The value of `v`; joint accelerations are computed once per call into `acc`.
+    pub(super) fn value(&self, v: &Variable, acc: &AccCache) -> Result<f64, FmuError> {
         let value = match (v.causality, &self.sim, v.accessor) {
             (Causality::Parameter, _, _) => read_param(v.accessor, &self.def, &self.settings),
+            (_, Some(sim), Accessor::JointQdd { joint, k }) => {
+                match acc.get_or_init(|| sim.accelerations()) {
+                    Ok(a) => a.get(joint, k),
+                    Err(e) => {
+                        return Err(FmuError::rejected(format!(
+                            "variable '{}' has no value: {e}",
+                            v.name
+                        )))
+                    }
+                }
+            }
             (_, Some(sim), _) => read_state(v.accessor, sim.state()),
             (_, None, Accessor::Input(i)) => self.inputs.get(i).copied(),
             _ => None,
@@ -94,8 +109,9 @@ impl Instance {
 
     fn get(&self, vrs: &[u32], base: Base, function: &'static str) -> Result<Vec<f64>, FmuError> {
         self.check(Op::Get, function)?;
+        let acc = AccCache::new();
         vrs.iter()
-            .map(|&vr| self.lookup(vr, base).and_then(|v| self.value(v)))
+            .map(|&vr| self.lookup(vr, base).and_then(|v| self.value(v, &acc)))
             .collect()
     }
 

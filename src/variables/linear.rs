@@ -1,8 +1,47 @@
 //! Which output variables a linear model can differentiate: the variable table's accessors
 //! mapped to `mechanics::Quantity`.
 
-use super::types::Accessor;
+use super::types::{Accessor, Causality, VariableTable};
 use crate::mechanics::Quantity;
+
+/// The largest `outputs × states` for which the states are declared (each output's
+/// `dependencies` lists every state: beyond this the description would grow past a few MB).
+pub const MAX_DEPENDENCY_ENTRIES: usize = 250_000;
+
+/// The FMI states of a model: table indices (0-based) of each joint coordinate `joint.J.q`,
+/// its rate `joint.J.qd` (the derivative of the coordinate) and its acceleration
+/// `joint.J.qdd` (the derivative of the rate), aligned; the state vector is `(q…, qd…)`.
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub struct States {
+    /// Coordinates.
+    pub q: Vec<usize>,
+    /// Rates.
+    pub qd: Vec<usize>,
+    /// Accelerations.
+    pub qdd: Vec<usize>,
+}
+
+/// The states a model declares: the joints with accelerations `joint.J.qdd` (in the table of
+/// trees without contact: every joint but spherical and fixed ones), within
+/// [`MAX_DEPENDENCY_ENTRIES`]; `None` otherwise (then no directional derivatives either).
+#[must_use]
+pub fn states(table: &VariableTable) -> Option<States> {
+    let find = |want: Accessor| table.vars.iter().position(|v| v.accessor == want);
+    let mut st = States {
+        q: Vec::new(),
+        qd: Vec::new(),
+        qdd: Vec::new(),
+    };
+    for (i, v) in table.vars.iter().enumerate() {
+        if let Accessor::JointQdd { joint, k } = v.accessor {
+            st.q.push(find(Accessor::JointQ { joint, k })?);
+            st.qd.push(find(Accessor::JointQd { joint, k })?);
+            st.qdd.push(i);
+        }
+    }
+    let outputs = table.with_causality(Causality::Output).count();
+    (!st.q.is_empty() && outputs * 2 * st.q.len() <= MAX_DEPENDENCY_ENTRIES).then_some(st)
+}
 
 /// The differentiable quantity behind an output accessor, if it is one (pose, twist, joint
 /// coordinates and rates, energy, momenta; not `system.work`, the constraint residual or
@@ -20,6 +59,7 @@ pub fn quantity(acc: Accessor) -> Option<Quantity> {
         Accessor::SiteW { site, i } => Quantity::SiteW(site, i),
         Accessor::JointQ { joint, k } => Quantity::JointQ(joint, k),
         Accessor::JointQd { joint, k } => Quantity::JointQd(joint, k),
+        Accessor::JointQdd { joint, k } => Quantity::JointQdd(joint, k),
         Accessor::Energy => Quantity::Energy,
         Accessor::P(i) => Quantity::P(i),
         Accessor::L(i) => Quantity::L(i),

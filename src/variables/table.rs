@@ -278,11 +278,40 @@ fn outputs(b: &mut Builder, def: &ModelDef) {
     }
 }
 
-/// Builds the table: inputs, outputs, parameters (see [`VariableTable::new`]).
+/// The joint accelerations `joint.J.qdd` of a tree without contact (not of spherical joints),
+/// last in the table so that every other value reference is as it was without them.
+fn accelerations(b: &mut Builder, def: &ModelDef) {
+    if crate::mechanics::supported(def).is_err() {
+        return;
+    }
+    for (joint, j) in def.joints.iter().enumerate() {
+        if j.kind == JointType::Spherical {
+            continue;
+        }
+        let n = &j.name;
+        let cs = coords(j.kind);
+        for (k, c) in cs.iter().enumerate() {
+            let unit = if *c == Coord::Angle { "rad/s2" } else { "m/s2" };
+            b.output(
+                format!("joint.{n}.qdd{}", index(k, cs.len())),
+                unit,
+                format!(
+                    "joint {n} acceleration: second derivative of the {}, at the communication point",
+                    coord_words(j.kind, k)
+                ),
+                Accessor::JointQdd { joint, k },
+            );
+        }
+    }
+}
+
+/// Builds the table: inputs, outputs, parameters, joint accelerations (see
+/// [`VariableTable::new`]).
 pub(super) fn build(def: &ModelDef, settings: &SolverSettings) -> VariableTable {
     let mut b = Builder { vars: Vec::new() };
     inputs(&mut b, def);
     outputs(&mut b, def);
     parameters(&mut b, def, settings);
+    accelerations(&mut b, def);
     VariableTable { vars: b.vars }
 }

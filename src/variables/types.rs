@@ -122,6 +122,14 @@ pub enum Accessor {
         /// Coordinate, 0-based.
         k: usize,
     },
+    /// Joint acceleration `k` (the derivative of `JointQd`), computed from the state and the
+    /// inputs when read (trees without contact).
+    JointQdd {
+        /// Joint index.
+        joint: usize,
+        /// Coordinate, 0-based.
+        k: usize,
+    },
     /// `system.energy`.
     Energy,
     /// `system.work`.

@@ -168,3 +168,37 @@ ffi_fn! {
         }
     } ?= fmi3Fatal
 }
+
+ffi_fn! {
+    /// `fmi3GetDirectionalDerivative`: exact `sensitivity = J seed` at the current
+    /// communication point (knowns: states and inputs; unknowns: outputs and state derivatives).
+    fn fmi3GetDirectionalDerivative(instance: fmi3Instance, unknowns: *const fmi3ValueReference, nUnknowns: usize, knowns: *const fmi3ValueReference, nKnowns: usize, seed: *const fmi3Float64, nSeed: usize, sensitivity: *mut fmi3Float64, nSensitivity: usize) -> fmi3Status {
+        // SAFETY: FMI contract: the arrays hold nUnknowns, nKnowns, nSeed and nSensitivity elements.
+        unsafe {
+            with_instance(instance, "fmi3GetDirectionalDerivative", |i| {
+                let u = slice(unknowns, nUnknowns, "unknowns")?;
+                let k = slice(knowns, nKnowns, "knowns")?;
+                let s = slice(seed, nSeed, "seed")?;
+                let out = slice_mut(sensitivity, nSensitivity, "sensitivity")?;
+                i.directional_derivative3(u, k, s, out)
+            })
+        }
+    } ?= fmi3Fatal
+}
+
+ffi_fn! {
+    /// `fmi3GetAdjointDerivative`: exact `sensitivity = Jᵀ seed` at the current communication
+    /// point.
+    fn fmi3GetAdjointDerivative(instance: fmi3Instance, unknowns: *const fmi3ValueReference, nUnknowns: usize, knowns: *const fmi3ValueReference, nKnowns: usize, seed: *const fmi3Float64, nSeed: usize, sensitivity: *mut fmi3Float64, nSensitivity: usize) -> fmi3Status {
+        // SAFETY: FMI contract: the arrays hold nUnknowns, nKnowns, nSeed and nSensitivity elements.
+        unsafe {
+            with_instance(instance, "fmi3GetAdjointDerivative", |i| {
+                let u = slice(unknowns, nUnknowns, "unknowns")?;
+                let k = slice(knowns, nKnowns, "knowns")?;
+                let s = slice(seed, nSeed, "seed")?;
+                let out = slice_mut(sensitivity, nSensitivity, "sensitivity")?;
+                i.adjoint_derivative3(u, k, s, out)
+            })
+        }
+    } ?= fmi3Fatal
+}

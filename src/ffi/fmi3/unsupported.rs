@@ -1,6 +1,6 @@
 //! The functions of `fmi3Functions.h` this Co-Simulation FMU does not provide: Model Exchange,
 //! Scheduled Execution, Event Mode, clocks, Configuration Mode, variable dependencies, output
-//! derivatives, and (until the linearisation work) directional and adjoint derivatives. Each
+//! derivatives. Each
 //! is exported (importers such as fmpy load every symbol) and returns `fmi3Error` with a
 //! message naming the function and why; the instance stays usable. No argument but the
 //! instance is read.
@@ -47,8 +47,6 @@ unsupported! {
     fmi3UpdateDiscreteStates(discreteStatesNeedUpdate: *mut fmi3Boolean, terminateSimulation: *mut fmi3Boolean, nominalsOfContinuousStatesChanged: *mut fmi3Boolean, valuesOfContinuousStatesChanged: *mut fmi3Boolean, nextEventTimeDefined: *mut fmi3Boolean, nextEventTime: *mut fmi3Float64) => NO_EVENT_MODE;
     fmi3EnterStepMode() => "this FMU has no Event Mode; it is in Step Mode from fmi3ExitInitializationMode on";
     fmi3GetOutputDerivatives(valueReferences: VR, nValueReferences: usize, orders: *const fmi3Int32, values: *mut fmi3Float64, nValues: usize) => "output derivatives are not provided (maxOutputDerivativeOrder=\"0\")";
-    fmi3GetDirectionalDerivative(unknowns: VR, nUnknowns: usize, knowns: VR, nKnowns: usize, seed: *const fmi3Float64, nSeed: usize, sensitivity: *mut fmi3Float64, nSensitivity: usize) => "not provided: providesDirectionalDerivatives is false";
-    fmi3GetAdjointDerivative(unknowns: VR, nUnknowns: usize, knowns: VR, nKnowns: usize, seed: *const fmi3Float64, nSeed: usize, sensitivity: *mut fmi3Float64, nSensitivity: usize) => "not provided: providesAdjointDerivatives is false";
     fmi3EnterConfigurationMode() => NO_CONFIGURATION;
     fmi3ExitConfigurationMode() => NO_CONFIGURATION;
     fmi3GetNumberOfVariableDependencies(valueReference: fmi3ValueReference, nDependencies: *mut usize) => NO_DEPENDENCIES;

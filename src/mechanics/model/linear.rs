@@ -132,6 +132,41 @@ impl TreeDynamics {
         }
     }
 
+    /// The directional derivative of the outputs `ys` along `(δq, δν, δu)` at `(q, ν, u)`:
+    /// `C δx + D δu` (one forward pass; module formulas).
+    ///
+    /// # Errors
+    /// A message when the joint-space mass matrix is singular.
+    #[allow(clippy::too_many_arguments)]
+    pub fn directional(
+        &self,
+        q: &[f64],
+        nu: &[f64],
+        u: &[f64],
+        dq: &[f64],
+        dnu: &[f64],
+        du: &[f64],
+        ys: &[Quantity],
+    ) -> Result<Vec<f64>, String> {
+        let n = self.n();
+        let (nud0, lu) = self.accelerations(q, nu, u)?;
+        let dual = |x: &[f64], d: &[f64]| -> Vec<Dual64> {
+            x.iter().zip(d).map(|(&a, &b)| Dual64::new(a, b)).collect()
+        };
+        let (qd, vd, ud) = (dual(q, dq), dual(nu, dnu), dual(u, du));
+        let nud_c: Vec<Dual64> = nud0.iter().map(|&x| Dual64::from(x)).collect();
+        let res = self.residual(&qd, &vd, &nud_c, &ud, false);
+        let r = DVector::from_iterator(n, res.iter().map(|x| -x.eps));
+        let dnud = lu
+            .solve(&r)
+            .ok_or_else(|| "the joint-space mass matrix is singular".to_string())?;
+        let nud: Vec<Dual64> = (0..n).map(|i| Dual64::new(nud0[i], dnud[i])).collect();
+        Ok(ys
+            .iter()
+            .map(|y| self.quantity(&qd, &vd, &nud, *y).eps)
+            .collect())
+    }
+
     /// The exact linear model at `(q, ν, u)` with outputs `ys` (module formulas).
     ///
     /// # Errors

@@ -174,6 +174,21 @@ impl std::fmt::Display for Unsupported {
     }
 }
 
+/// Whether `def` has a minimal-coordinate dynamics here: a tree (no loop-closing joint) without
+/// collision shapes.
+///
+/// # Errors
+/// [`Unsupported`] naming the first obstacle.
+pub fn supported(def: &ModelDef) -> Result<(), Unsupported> {
+    if let Some(j) = def.joints.iter().find(|j| j.loop_closing) {
+        return Err(Unsupported::Loop(j.name.clone()));
+    }
+    if !def.contact.shapes.is_empty() {
+        return Err(Unsupported::Contact);
+    }
+    Ok(())
+}
+
 /// Per body: pose, twist and acceleration (world frame; `v`, `a` of the frame origin).
 #[derive(Clone, Debug)]
 pub struct Motion<T: Real> {
@@ -208,12 +223,7 @@ impl TreeDynamics {
         body_rot0: Vec<Mat3>,
     ) -> Result<Self, Unsupported> {
         let def: &ModelDef = model.def();
-        if let Some(j) = def.joints.iter().find(|j| j.loop_closing) {
-            return Err(Unsupported::Loop(j.name.clone()));
-        }
-        if !def.contact.shapes.is_empty() {
-            return Err(Unsupported::Contact);
-        }
+        supported(def)?;
         let nb = def.bodies.len();
         let mut coords = Vec::new();
         let mut parent_of = vec![Parent::Free(0); nb];
