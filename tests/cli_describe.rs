@@ -119,6 +119,17 @@ fn expected(spec: &Spec) -> Vec<(String, &'static str)> {
         ],
         "parameter",
     );
+    // the accelerations of a tree without contact, last
+    if !spec.joint.iter().any(|j| j.is_loop_closing()) && spec.collision.is_empty() {
+        for j in &joints {
+            let p = format!("joint.{}", j.name);
+            match (j.kind, coords(j.kind)) {
+                (JointKind::Spherical | JointKind::Fixed, _) => {}
+                (_, 1) => add(vec![format!("{p}.qdd")], "output"),
+                (_, n) => add(idx(&format!("{p}.qdd"), n), "output"),
+            }
+        }
+    }
     out
 }
 

@@ -2,6 +2,9 @@
 //! against `triad linearize`'s model at the same state, against finite differences through
 //! the FMU (inputs, and the initial coordinates as parameters), and bad calls refused.
 
+// index loops over a Jacobian's rows and columns read closer to the formulas
+#![allow(clippy::needless_range_loop)]
+
 mod fmu_support;
 
 use fmu_support::fmi3::{shipped, Fmu3};

@@ -28,7 +28,13 @@ fn failed_step_discards_and_continues_from_the_last_good_time() {
         fmi2OK
     );
     let ins = m.vrs(Causality::Input);
-    let outs = m.vrs(Causality::Output);
+    // the outputs that are values of the state (the accelerations also follow the inputs held)
+    let outs: Vec<u32> = m
+        .table
+        .with_causality(Causality::Output)
+        .filter(|v| !matches!(v.accessor, triad::variables::Accessor::JointQdd { .. }))
+        .map(|v| v.vr)
+        .collect();
     assert_eq!(f.step(0.0, 0.1), fmi2OK);
     let (_, good) = f.get_real(&outs);
 

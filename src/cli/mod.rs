@@ -113,8 +113,8 @@ pub enum Command {
         /// Simulink R2023b+, Dymola); pick 2 for every other host (FMI 2.0 is what most tools,
         /// OMSimulator and libcosim among them, import). Both come from the same variable table
         /// and the same runtime binary and give the same results; FMI 3 names vectors and
-        /// matrices as arrays and adds `time` (valueReference 0). Early return and
-        /// directional/adjoint derivatives are not offered yet.
+        /// matrices as arrays and adds `time` (valueReference 0). Directional (and, FMI 3, adjoint)
+        /// derivatives for trees without contact; early return is not offered yet.
         #[arg(long, value_name = "2|3", default_value = "2", value_parser = ["2", "3"])]
         fmi: String,
         /// How a .urdf MODEL is imported.

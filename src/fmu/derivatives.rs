@@ -78,10 +78,12 @@ impl Instance {
                 Some((0, i)) => dq[i] += s,
                 Some((1, i)) => dnu[i] += s,
                 Some((_, i)) => du[i] += s,
-                None => return Err(FmuError::rejected(format!(
+                None => {
+                    return Err(FmuError::rejected(format!(
                     "value reference {} ({}) is neither a state nor an input: it cannot be a known",
                     v.vr, v.name
-                ))),
+                )))
+                }
             }
         }
         let mut ys: Vec<Quantity> = Vec::with_capacity(unknowns.len());
