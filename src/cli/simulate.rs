@@ -254,6 +254,11 @@ pub fn run(args: &SimulateArgs) -> Result<(), CliError> {
         ProgressStyle::with_template("{bar:40} {pos}/{len} steps, eta {eta}")
             .unwrap_or_else(|_| ProgressStyle::default_bar()),
     );
+    // the inputs of the start time are held before the first row, as an FMU host sets them
+    // before reading its first outputs (the accelerations follow the inputs held)
+    if let Some(table) = &inputs {
+        table.apply(sim.time(), sim.state_mut().inputs_mut());
+    }
     row(&sim, &mut sink, &mut series, &mut full)?;
     for k in 1..=n {
         let target = if k == n { stop } else { start + k as f64 * h };

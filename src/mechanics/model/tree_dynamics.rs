@@ -681,6 +681,76 @@ impl TreeDynamics {
         self.joint_rot0[j]
     }
 
+    /// The rates of body `b`'s own joint (or free-body six), and the body its joint hangs on.
+    fn own_dofs(&self, b: usize) -> (std::ops::Range<usize>, Option<usize>) {
+        match self.parent_of[b] {
+            Parent::Free(o) => (o..o + 6, None),
+            Parent::Joint(j) => {
+                let jd = self.joints[j].as_ref().expect("tree joint");
+                (jd.at..jd.at + jd.kind.dof(), jd.parent)
+            }
+        }
+    }
+
+    /// The joint-space mass matrix by the composite-rigid-body algorithm in world coordinates
+    /// (spatial vectors about the world origin: motion `S_k = (ω_k, u_k − ω_k × p_k)`, body
+    /// inertia `[I_G + m ĉĉᵀ, m ĉ; m ĉᵀ, m I]` for the centre of mass `c`): composite inertias
+    /// `I^c_b = I_b + Σ_children I^c`, then `M_ij = S_jᵀ I^c_{b(i)} S_i` for every rate `j` of
+    /// `b(i)` and its ancestors. O(N·depth).
+    #[must_use]
+    pub fn mass_matrix(&self, q: &[f64]) -> nalgebra::DMatrix<f64> {
+        type S6 = nalgebra::SMatrix<f64, 6, 6>;
+        type V6 = nalgebra::SVector<f64, 6>;
+        let n = self.coords.len();
+        let zero = vec![0.0; n];
+        let m = self.motion(q, &zero, None);
+        let nb = self.mass.len();
+        let mut ic = vec![S6::zeros(); nb];
+        for b in 0..nb {
+            let (c, _) = self.com_of(&m, b);
+            let iw = self.inertia_world(&m, b);
+            let (ch, mass) = (hat(&c), self.mass[b]);
+            let mut blk = S6::zeros();
+            blk.fixed_view_mut::<3, 3>(0, 0)
+                .copy_from(&(iw + ch * ch.transpose() * mass));
+            blk.fixed_view_mut::<3, 3>(0, 3).copy_from(&(ch * mass));
+            blk.fixed_view_mut::<3, 3>(3, 0)
+                .copy_from(&(ch.transpose() * mass));
+            blk.fixed_view_mut::<3, 3>(3, 3)
+                .copy_from(&(Mat3::identity() * mass));
+            ic[b] = blk;
+        }
+        for &b in self.order.iter().rev() {
+            if let (_, Some(p)) = self.own_dofs(b) {
+                let child = ic[b];
+                ic[p] += child;
+            }
+        }
+        let col = |k: usize| -> V6 {
+            let (w, u, p) = m.cols[k];
+            let v = u - w.cross(&p);
+            V6::new(w[0], w[1], w[2], v[0], v[1], v[2])
+        };
+        let mut mm = nalgebra::DMatrix::<f64>::zeros(n, n);
+        for b in 0..nb {
+            let (own, _) = self.own_dofs(b);
+            for i in own {
+                let f = ic[b] * col(i);
+                let mut at = Some(b);
+                while let Some(k) = at {
+                    let (dofs, parent) = self.own_dofs(k);
+                    for j in dofs {
+                        let v = col(j).dot(&f);
+                        mm[(i, j)] = v;
+                        mm[(j, i)] = v;
+                    }
+                    at = parent;
+                }
+            }
+        }
+        mm
+    }
+
     /// The accelerations `ν̇` at `(q, ν, u)` (f64), with the mass matrix's LU.
     ///
     /// # Errors
@@ -694,27 +764,13 @@ impl TreeDynamics {
         let n = self.coords.len();
         let zero = vec![0.0; n];
         let bias = self.residual(q, nu, &zero, u, false);
-        let mut mm = nalgebra::DMatrix::<f64>::zeros(n, n);
-        let mut e = vec![0.0; n];
-        for i in 0..n {
-            e[i] = 1.0;
-            let col = self.residual(q, &zero, &e, &zero_inputs(self.nu), true);
-            e[i] = 0.0;
-            for r in 0..n {
-                mm[(r, i)] = col[r];
-            }
-        }
-        let lu = mm.lu();
+        let lu = self.mass_matrix(q).lu();
         let rhs = nalgebra::DVector::from_iterator(n, bias.iter().map(|x| -x));
         let acc = lu
             .solve(&rhs)
             .ok_or_else(|| "the joint-space mass matrix is singular".to_string())?;
         Ok((acc.iter().copied().collect(), lu))
     }
-}
-
-fn zero_inputs(n: usize) -> Vec<f64> {
-    vec![0.0; n]
 }
 
 #[cfg(test)]
