@@ -140,6 +140,30 @@ impl Instance {
         Ok(out)
     }
 
+    /// The table variables of FMI 3 `unknowns` and `knowns`, with the sizes checked: `n_seed`
+    /// and `n_out` are the knowns' and unknowns' sizes (directional) or the reverse (adjoint).
+    fn operands3(
+        &self,
+        unknowns: &[u32],
+        knowns: &[u32],
+        (n_seed, n_out): (usize, usize),
+        adjoint: bool,
+    ) -> Result<(Vec<&Variable>, Vec<&Variable>), FmuError> {
+        let (u, k) = (self.members3(unknowns)?, self.members3(knowns)?);
+        let (want_seed, want_out) = if adjoint {
+            (u.len(), k.len())
+        } else {
+            (k.len(), u.len())
+        };
+        if n_seed != want_seed || n_out != want_out {
+            return Err(FmuError::rejected(format!(
+                "nSeed = {n_seed} and nSensitivity = {n_out} must be {want_seed} and {want_out} (the {} sizes)",
+                if adjoint { "unknowns' and knowns'" } else { "knowns' and unknowns'" }
+            )));
+        }
+        Ok((u, k))
+    }
+
     /// `fmi3GetDirectionalDerivative` (`seed.len()` = `nSeed`, `out.len()` = `nSensitivity`).
     ///
     /// # Errors
@@ -152,23 +176,14 @@ impl Instance {
         out: &mut [f64],
     ) -> Result<Status, FmuError> {
         self.check(Op::GetDirectionalDerivative, "fmi3GetDirectionalDerivative")?;
-        let (u, k) = (self.members3(unknowns)?, self.members3(knowns)?);
-        if seed.len() != k.len() || out.len() != u.len() {
-            return Err(FmuError::rejected(format!(
-                "nSeed = {} and nSensitivity = {} must be the knowns' and unknowns' sizes, {} and {}",
-                seed.len(),
-                out.len(),
-                k.len(),
-                u.len()
-            )));
-        }
+        let (u, k) = self.operands3(unknowns, knowns, (seed.len(), out.len()), false)?;
         let values = self.directional_table(&u, &k, seed)?;
         out.copy_from_slice(&values);
         Ok(Status::Ok)
     }
 
     /// `fmi3GetAdjointDerivative`: `out[j] = Σ_i seed_i ∂unknown_i/∂known_j` (`seed.len()` =
-    /// the unknowns' size, `out.len()` = the knowns').
+    /// the unknowns' size, `out.len()` = the knowns'); one directional derivative per known.
     ///
     /// # Errors
     /// As [`Instance::directional_derivative3`].
@@ -180,16 +195,7 @@ impl Instance {
         out: &mut [f64],
     ) -> Result<Status, FmuError> {
         self.check(Op::GetDirectionalDerivative, "fmi3GetAdjointDerivative")?;
-        let (u, k) = (self.members3(unknowns)?, self.members3(knowns)?);
-        if seed.len() != u.len() || out.len() != k.len() {
-            return Err(FmuError::rejected(format!(
-                "nSeed = {} and nSensitivity = {} must be the unknowns' and knowns' sizes, {} and {}",
-                seed.len(),
-                out.len(),
-                u.len(),
-                k.len()
-            )));
-        }
+        let (u, k) = self.operands3(unknowns, knowns, (seed.len(), out.len()), true)?;
         if let Some(i) = seed.iter().position(|x| !x.is_finite()) {
             return Err(FmuError::rejected(format!(
                 "seed {i} ({}) is not finite",
@@ -198,11 +204,11 @@ impl Instance {
         }
         let mut values = vec![0.0; k.len()];
         let mut unit = vec![0.0; k.len()];
-        for j in 0..k.len() {
+        for (j, value) in values.iter_mut().enumerate() {
             unit[j] = 1.0;
             let col = self.directional_table(&u, &k, &unit)?;
             unit[j] = 0.0;
-            values[j] = col.iter().zip(seed).map(|(c, s)| c * s).sum();
+            *value = col.iter().zip(seed).map(|(c, s)| c * s).sum();
         }
         out.copy_from_slice(&values);
         Ok(Status::Ok)

@@ -228,3 +228,16 @@ def frame_states(model, q, v, links):
 def mass_matrix_diagonal(model, q):
     """The diagonal of the joint-space mass matrix at q (to size test torques to each joint)."""
     return np.diag(pin.crba(model, model.createData(), q)).copy()
+
+
+def _toml_array(values):
+    return "[" + ", ".join(repr(float(x)) for x in values) + "]"
+
+
+def with_base(spec, base):
+    """The spec with the free base's `position = [...]` line replaced by its initial state
+    (`base`: position, orientation, velocity, angular_velocity)."""
+    lines = spec.splitlines()
+    (at,) = [i for i, line in enumerate(lines) if line.startswith("position = ")]
+    lines[at:at + 1] = [f"{key} = {_toml_array(base[key])}" for key in ("position", "orientation", "velocity", "angular_velocity")]
+    return "\n".join(lines) + "\n"

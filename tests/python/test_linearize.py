@@ -221,18 +221,6 @@ def test_fixed_base_against_pinocchio(triad_bin, tmp_path, name, record_property
 # --- a floating base -----------------------------------------------------------------------
 
 
-def _toml_array(values):
-    return "[" + ", ".join(repr(float(x)) for x in values) + "]"
-
-
-def _with_base(spec, base):
-    """The spec with the free base's `position = [...]` line replaced by its initial state."""
-    lines = spec.splitlines()
-    (at,) = [i for i, line in enumerate(lines) if line.startswith("position = ")]
-    lines[at:at + 1] = [f"{key} = {_toml_array(base[key])}" for key in ("position", "orientation", "velocity", "angular_velocity")]
-    return "\n".join(lines) + "\n"
-
-
 def _floating_reference(model, q, v, tau_joints, base):
     """triad's lower half of A and B and its xdot0's lower half from Pinocchio, in the order
     (base r, base theta, joints by Pinocchio's index) for positions and
@@ -284,7 +272,7 @@ def test_floating_base_against_pinocchio(triad_bin, tmp_path, name, record_prope
         q, v = ref.pinocchio_state(model, joints, base)
         tau = _random_torque(model, q, rng)
         spec = tmp_path / f"{name}_{seed}.toml"
-        spec.write_text(_with_base(text, base))
+        spec.write_text(ref.with_base(text, base))
         out = tmp_path / f"{name}_{seed}.npz"
         _triad(triad_bin, "linearize", str(spec), *_state_args(model, names, joints, tau), "-o", str(out))
         lin = Linearized(out)

@@ -117,7 +117,7 @@ class Robot:
     def build(self, tag, base):
         """The FMU of the imported spec, with the base's initial state written in if it floats."""
         spec = self.tmp / f"{tag}.toml"
-        spec.write_text(self.spec if base is None else _with_base(self.spec, base))
+        spec.write_text(self.spec if base is None else ref.with_base(self.spec, base))
         fmu = self.tmp / f"{tag}.fmu"
         _run_triad(self.triad, "build", str(spec), "-o", str(fmu))
         return fmu
@@ -156,18 +156,6 @@ def _run_triad(triad_bin, *args):
     proc = subprocess.run([triad_bin, *args], capture_output=True, text=True, timeout=600)
     assert proc.returncode == 0, f"triad {' '.join(args)}:\n{proc.stderr}"
     return proc.stdout
-
-
-def _toml_array(values):
-    return "[" + ", ".join(repr(float(x)) for x in values) + "]"
-
-
-def _with_base(spec, base):
-    """The spec with the free base's `position = [...]` line replaced by its initial state."""
-    lines = spec.splitlines()
-    (at,) = [i for i, line in enumerate(lines) if line.startswith("position = ")]
-    lines[at:at + 1] = [f"{key} = {_toml_array(base[key])}" for key in ("position", "orientation", "velocity", "angular_velocity")]
-    return "\n".join(lines) + "\n"
 
 
 def _frame(row, prefix):
