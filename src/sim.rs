@@ -30,8 +30,8 @@
 //! - a step whose outputs are not all finite is rolled back ([`Failure::NonFinite`]).
 
 use crate::mechanics::{
-    above_floor, controlled_step, step_state, Model, ModelDef, ModelError, Operating,
-    SolverSettings, State, StepError, Verdict,
+    above_floor, controlled_step, crossing_within, step_state, Model, ModelDef, ModelError,
+    Operating, SolverSettings, State, StepError, Verdict, LANDED,
 };
 use thiserror::Error;
 
@@ -116,6 +116,9 @@ pub struct Simulation {
     state: State,
     /// State at the start of the current communication step (roll-back target).
     saved: State,
+    /// State at the start of the current sub-step (early return: the retake of a sub-step
+    /// that crossed an event).
+    sub: State,
     /// Whether a clamped actuator input has been reported ([`Simulation::clamp_notice`]).
     clamp_noticed: bool,
     /// Whether an order-4 step redone at order 2 has been reported
@@ -140,6 +143,7 @@ impl Simulation {
         Ok(Self {
             model,
             state,
+            sub: saved.clone(),
             saved,
             clamp_noticed: false,
             order2_noticed: false,
@@ -315,6 +319,78 @@ impl Simulation {
     /// # Errors
     /// As [`Simulation::advance`], less the check of the outputs.
     pub fn advance_state(&mut self, h: f64) -> Result<bool, AdvanceError> {
+        self.advance_state_with(h, false).map(|(moved, _)| moved)
+    }
+
+    /// [`Simulation::advance`] that returns early, at the time a joint reaches or leaves a
+    /// stop or a contact touches or leaves (`mechanics::crossing_within`; FMI 3's early return):
+    /// `Some(t)` is that time, `None` a step that landed on `t + h` without an event. A sub-step
+    /// that crosses an event is retaken to end on it (secant, up to six times); one that ends
+    /// within `LANDED` of it counts as ending on it, and an event within `LANDED` of a
+    /// sub-step's start (the one returned at before) is not reported again.
+    ///
+    /// # Errors
+    /// As [`Simulation::advance`].
+    pub fn advance_early(&mut self, h: f64) -> Result<Option<f64>, AdvanceError> {
+        let result = self.advance_state_with(h, true);
+        let moved = match &result {
+            Ok((moved, _)) => *moved,
+            Err(e) => e.error.stopped_short(),
+        };
+        if moved {
+            self.state.refresh_outputs(&self.model);
+            if let Some(what) = self.state.outputs().first_non_finite() {
+                self.state.copy_values_from(&self.saved);
+                self.state.refresh_outputs(&self.model);
+                return Err(AdvanceError {
+                    error: Failure::NonFinite(what),
+                    last_good_time: self.state.time(),
+                });
+            }
+        }
+        result.map(|(_, at)| at)
+    }
+
+    /// After a sub-step of size `h` from `self.sub`: if it crossed an event, the sub-step
+    /// retaken to end on it, and its size; `None` without an event.
+    fn land_on_event(&mut self, h: f64) -> Result<Option<f64>, StepError> {
+        const RETAKES: usize = 6;
+        let hi = 1.0 + 1e-12;
+        let cross = |sim: &Self| {
+            crossing_within(
+                &sim.model,
+                &sim.sub.q,
+                &sim.sub.angles,
+                &sim.state.q,
+                &sim.state.angles,
+                hi,
+            )
+        };
+        let Some(mut theta) = cross(self) else {
+            return Ok(None);
+        };
+        let mut h = h;
+        for _ in 0..RETAKES {
+            if theta >= 1.0 - LANDED {
+                break;
+            }
+            h *= theta;
+            self.state.copy_values_from(&self.sub);
+            step_state(&self.model, &mut self.state, h)?;
+            match cross(self) {
+                Some(t) => theta = t,
+                // the retake ends just short of the event (the secant's error): it is there
+                None => break,
+            }
+        }
+        Ok(Some(h))
+    }
+
+    fn advance_state_with(
+        &mut self,
+        h: f64,
+        early: bool,
+    ) -> Result<(bool, Option<f64>), AdvanceError> {
         let t0 = self.state.time();
         if !(h.is_finite() && h > 0.0) {
             return Err(AdvanceError {
@@ -328,10 +404,10 @@ impl Simulation {
         if span < MIN_STEP_RATIO * settings.max_step {
             self.state.set_lag(span);
             self.state.set_time(t_end);
-            return Ok(false);
+            return Ok((false, None));
         }
         if settings.rtol > 0.0 {
-            return self.advance_controlled(t0, t_end, span);
+            return self.advance_controlled(t0, t_end, span, early);
         }
         let needed = self.substeps(span);
         let bound = settings.max_substeps.max(1);
@@ -342,12 +418,31 @@ impl Simulation {
         let dt = span / needed;
         let (start, budget, size) = (self.state.effort(), self.work_bound(), self.work_size());
         for k in 0..n {
-            if let Err(error) = step_state(&self.model, &mut self.state, dt) {
-                self.state.copy_values_from(&self.saved);
-                return Err(AdvanceError {
-                    error: error.into(),
-                    last_good_time: t0,
-                });
+            if early {
+                self.sub.copy_values_from(&self.state);
+            }
+            let stepped = step_state(&self.model, &mut self.state, dt).and_then(|_| {
+                if early {
+                    self.land_on_event(dt)
+                } else {
+                    Ok(None)
+                }
+            });
+            match stepped {
+                Err(error) => {
+                    self.state.copy_values_from(&self.saved);
+                    return Err(AdvanceError {
+                        error: error.into(),
+                        last_good_time: t0,
+                    });
+                }
+                Ok(Some(landed)) => {
+                    let reached = (t0 - self.saved.lag()) + dt * k as f64 + landed;
+                    self.state.set_lag(0.0);
+                    self.state.set_time(reached);
+                    return Ok((true, Some(reached)));
+                }
+                Ok(None) => {}
             }
             let work = self.work_since(start, size);
             if work > budget && k + 1 < n {
@@ -375,12 +470,19 @@ impl Simulation {
             });
         }
         self.state.set_time(t_end);
-        Ok(true)
+        Ok((true, None))
     }
 
     /// The error-controlled communication step (module docs): `span` (the step and the lag)
-    /// from the bodies' time to `t_end`.
-    fn advance_controlled(&mut self, t0: f64, t_end: f64, span: f64) -> Result<bool, AdvanceError> {
+    /// from the bodies' time to `t_end`; with `early`, it returns at the end of an accepted
+    /// step that reached an event (the controller lands its steps on them).
+    fn advance_controlled(
+        &mut self,
+        t0: f64,
+        t_end: f64,
+        span: f64,
+        early: bool,
+    ) -> Result<(bool, Option<f64>), AdvanceError> {
         let bound = self.model.settings().max_substeps.max(1);
         self.saved.copy_values_from(&self.state);
         let mut remaining = span;
@@ -430,11 +532,30 @@ impl Simulation {
                     }
                 }
             };
+            if early {
+                self.sub.copy_values_from(&self.state);
+            }
             let verdict = controlled_step(&self.model, &mut self.state, h);
             match verdict {
                 Ok(Verdict::Accept) => {
                     done += h;
                     remaining = if last { 0.0 } else { remaining - h };
+                    let event = early
+                        && crossing_within(
+                            &self.model,
+                            &self.sub.q,
+                            &self.sub.angles,
+                            &self.state.q,
+                            &self.state.angles,
+                            1.0 + 1e-12,
+                        )
+                        .is_some();
+                    if event && remaining > 0.0 {
+                        let reached = (t0 - self.saved.lag()) + done;
+                        self.state.set_lag(0.0);
+                        self.state.set_time(reached);
+                        return Ok((true, Some(reached)));
+                    }
                 }
                 Ok(Verdict::Reject) => {}
                 Ok(Verdict::Land(h_land)) => landing = Some(h_land),
@@ -454,7 +575,7 @@ impl Simulation {
         }
         self.state.set_lag(0.0);
         self.state.set_time(t_end);
-        Ok(true)
+        Ok((true, None))
     }
 }
 

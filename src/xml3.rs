@@ -23,7 +23,8 @@ pub const FMI_VERSION: &str = "3.0";
 /// The `<CoSimulation>` attributes after `modelIdentifier`, in the FMI 3 spellings
 /// (`fmi3InterfaceType.xsd`: `canGetAndSetFMUState`, `providesDirectionalDerivatives`, …).
 /// Directional and adjoint derivatives where the model declares states
-/// (`variables::linear::states`); early return and event mode are not offered (yet).
+/// (`variables::linear::states`); early return at stop and contact events (when the importer
+/// allows it); no event mode.
 #[must_use]
 pub fn co_simulation(derivatives: bool) -> [(&'static str, &'static str); 7] {
     let d = if derivatives { "true" } else { "false" };
@@ -33,7 +34,7 @@ pub fn co_simulation(derivatives: bool) -> [(&'static str, &'static str); 7] {
         ("canSerializeFMUState", "true"),
         ("providesDirectionalDerivatives", d),
         ("providesAdjointDerivatives", d),
-        ("mightReturnEarlyFromDoStep", "false"),
+        ("mightReturnEarlyFromDoStep", "true"),
         ("hasEventMode", "false"),
     ]
 }

@@ -114,7 +114,8 @@ pub enum Command {
         /// OMSimulator and libcosim among them, import). Both come from the same variable table
         /// and the same runtime binary and give the same results; FMI 3 names vectors and
         /// matrices as arrays and adds `time` (valueReference 0). Directional (and, FMI 3, adjoint)
-        /// derivatives for trees without contact; early return is not offered yet.
+        /// derivatives for trees without contact; FMI 3 returns early from fmi3DoStep at
+        /// contact and joint-stop events when the importer allows it.
         #[arg(long, value_name = "2|3", default_value = "2", value_parser = ["2", "3"])]
         fmi: String,
         /// How a .urdf MODEL is imported.

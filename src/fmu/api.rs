@@ -9,8 +9,8 @@ pub enum Api {
     Fmi2,
     /// FMI 3.0 Co-Simulation (`fmi3InstantiateCoSimulation`).
     Fmi3 {
-        /// `earlyReturnAllowed` of `fmi3InstantiateCoSimulation` (recorded; `fmi3DoStep`
-        /// does not return early yet).
+        /// `earlyReturnAllowed` of `fmi3InstantiateCoSimulation`: `fmi3DoStep` returns early
+        /// at stop and contact events.
         early_return_allowed: bool,
     },
 }

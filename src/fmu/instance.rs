@@ -419,6 +419,21 @@ impl Instance {
     /// than `solver.max_substeps` sub-steps [`FmuError::Discard`] at the time reached (usable
     /// there either way).
     pub fn do_step(&mut self, t: f64, h: f64) -> Result<Status, FmuError> {
+        self.step_with(t, h, false).map(|(status, _)| status)
+    }
+
+    /// `fmi3DoStep`: [`Instance::do_step`], and with `earlyReturnAllowed` the step returns early
+    /// at the time a joint reaches or leaves a stop or a contact touches or leaves
+    /// ([`Simulation::advance_early`]): then `true`, and the time reached is that time.
+    ///
+    /// # Errors
+    /// As [`Instance::do_step`].
+    pub fn do_step3(&mut self, t: f64, h: f64) -> Result<(Status, bool), FmuError> {
+        let early = self.early_return_allowed();
+        self.step_with(t, h, early)
+    }
+
+    fn step_with(&mut self, t: f64, h: f64, early: bool) -> Result<(Status, bool), FmuError> {
         self.check(Op::DoStep, "fmi2DoStep")?;
         let stop = self.stop_time;
         let sim = self
@@ -447,7 +462,11 @@ impl Instance {
         // land on the master's time grid exactly
         sim.state_mut().set_time(t);
         let clamped = sim.clamp_notice();
-        let result = sim.advance(h);
+        let result = if early {
+            sim.advance_early(h)
+        } else {
+            sim.advance(h).map(|()| None)
+        };
         let now = sim.time();
         let order2 = sim.order2_notice();
         if let Some(msg) = clamped {
@@ -457,9 +476,9 @@ impl Instance {
             self.log(Status::Warning, Category::LogStatusWarning, &msg);
         }
         match result {
-            Ok(()) => {
+            Ok(event) => {
                 self.last_successful_time = now;
-                Ok(Status::Ok)
+                Ok((Status::Ok, event.is_some()))
             }
             Err(e) => {
                 self.last_successful_time = e.last_good_time;

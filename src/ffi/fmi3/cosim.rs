@@ -6,10 +6,12 @@ use crate::ffi::guard::{ffi_fn, non_null, with_instance};
 
 ffi_fn! {
     /// `fmi3DoStep`: advances from `currentCommunicationPoint` (checked against the instance
-    /// time) by `communicationStepSize` exactly as `fmi2DoStep`. No event handling, never a
-    /// request to terminate, no early return (yet): those outputs are false;
-    /// `lastSuccessfulTime` is the time reached, also after `fmi3Discard` (the state is left
-    /// there and the instance usable). A NULL output pointer is `fmi3Error`, nothing done.
+    /// time) by `communicationStepSize` exactly as `fmi2DoStep`; with `earlyReturnAllowed` it
+    /// returns early (`earlyReturn`, `lastSuccessfulTime` = that time) when a joint reaches or
+    /// leaves a stop or a contact touches or leaves. No event handling, never a request to
+    /// terminate: those outputs are false; `lastSuccessfulTime` is the time reached, also after
+    /// `fmi3Discard` (the state is left there and the instance usable). A NULL output pointer
+    /// is `fmi3Error`, nothing done.
     fn fmi3DoStep(
         instance: fmi3Instance,
         currentCommunicationPoint: fmi3Float64,
@@ -29,12 +31,12 @@ ffi_fn! {
                 non_null!(terminateSimulation, "terminateSimulation");
                 non_null!(earlyReturn, "earlyReturn");
                 non_null!(lastSuccessfulTime, "lastSuccessfulTime");
-                let result = i.do_step(currentCommunicationPoint, communicationStepSize);
+                let result = i.do_step3(currentCommunicationPoint, communicationStepSize);
                 *eventHandlingNeeded = false;
                 *terminateSimulation = false;
-                *earlyReturn = false;
+                *earlyReturn = matches!(result, Ok((_, true)));
                 *lastSuccessfulTime = i.time_reached();
-                result
+                result.map(|(status, _)| status)
             })
         }
     } ?= fmi3Fatal

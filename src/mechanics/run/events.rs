@@ -54,6 +54,21 @@ pub fn stop_crossing(
     q1: &[f64],
     ang1: &[f64],
 ) -> Option<f64> {
+    crossing_within(model, q0, ang0, q1, ang1, 1.0 - LANDED)
+}
+
+/// The earliest fraction `θ ∈ (LANDED, hi)` of the step at which a limit or contact is
+/// crossed ([`stop_crossing`] with the upper bound `hi`; `hi > 1` also reports crossings at
+/// the step's end, for an early return there).
+#[must_use]
+pub fn crossing_within(
+    model: &Model,
+    q0: &[f64],
+    ang0: &[f64],
+    q1: &[f64],
+    ang1: &[f64],
+    hi: f64,
+) -> Option<f64> {
     let mut first: Option<f64> = None;
     for jt in &model.joints {
         let Some(st) = jt.stops else {
@@ -72,7 +87,7 @@ pub fn stop_crossing(
         ];
         for (x0, x1) in limits.into_iter().flatten() {
             if let Some(theta) = crossing(x0, x1) {
-                if theta > LANDED && theta < 1.0 - LANDED && first.is_none_or(|f| theta < f) {
+                if theta > LANDED && theta < hi && first.is_none_or(|f| theta < f) {
                     first = Some(theta);
                 }
             }
@@ -80,7 +95,7 @@ pub fn stop_crossing(
     }
     let mut consider = |x0: f64, x1: f64| {
         if let Some(theta) = crossing(x0, x1) {
-            if theta > LANDED && theta < 1.0 - LANDED && first.is_none_or(|f| theta < f) {
+            if theta > LANDED && theta < hi && first.is_none_or(|f| theta < f) {
                 first = Some(theta);
             }
         }
