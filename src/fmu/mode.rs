@@ -35,7 +35,7 @@ impl Mode {
             Self::StepFailed => "stepFailed mode",
             Self::StepCanceled => "stepCanceled mode",
             Self::Terminated => "Terminated mode",
-            Self::Error => "Error mode (call fmi2Reset or fmi2SetFMUstate)",
+            Self::Error => "Error mode (reset the instance or set an FMU state)",
             Self::Fatal => "Fatal mode",
         }
     }

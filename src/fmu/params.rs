@@ -37,7 +37,7 @@ impl Base {
 }
 
 /// Why `v` may not be set in `mode`, if it may not (notes 1, 3 and 6 of the FMI 2.0.4 §4.2.4 table).
-fn set_forbidden(mode: Mode, v: &Variable) -> Option<String> {
+fn set_forbidden(mode: Mode, v: &Variable, exit_init: &str) -> Option<String> {
     let what = match (v.causality, v.variability) {
         (Causality::Output, _) => {
             return Some(format!(
@@ -59,7 +59,7 @@ fn set_forbidden(mode: Mode, v: &Variable) -> Option<String> {
         Mode::Instantiated | Mode::InitializationMode => None,
         Mode::StepComplete if v.variability == Variability::Tunable => None,
         _ => Some(format!(
-            "variable '{}' is a {what}; it can only be set before fmi2ExitInitializationMode",
+            "variable '{}' is a {what}; it can only be set before {exit_init}",
             v.name
         )),
     }
@@ -208,7 +208,9 @@ impl Instance {
                     v.name
                 )));
             }
-            if let Some(why) = set_forbidden(self.mode, v) {
+            if let Some(why) =
+                set_forbidden(self.mode, v, self.api.name("fmi2ExitInitializationMode"))
+            {
                 return Err(FmuError::rejected(format!(
                     "{why} (in {})",
                     self.mode.name()

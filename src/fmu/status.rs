@@ -44,7 +44,7 @@ pub enum FmuError {
     #[error("{0}")]
     Unsupported(String),
     /// The instance was poisoned by an earlier panic.
-    #[error("instance is unusable after an earlier fatal error; only fmi2FreeInstance is allowed")]
+    #[error("instance is unusable after an earlier fatal error; only freeing it (fmi2FreeInstance, fmi3FreeInstance) is allowed")]
     Poisoned,
 }
 
