@@ -2,7 +2,7 @@
 run: linux64 natively, win64 under wine64, aarch64 Linux under qemu-aarch64, and (with
 --host-lib) the host build of the library, then compares the results with linux64's.
 
-    python run_harness.py FMU_DIR HARNESS_DIR [--host-lib target/release/libtriad.so]
+    python run_harness.py FMU_DIR HARNESS_DIR [--host-lib target/release/libtriad.so] [--fmi3-dir DIR]
 
 HARNESS_DIR holds fmi_harness (native), fmi_harness.exe with the test-only
 bcryptprimitives.dll beside it, and fmi_harness.aarch64. Every FMU must carry
@@ -14,11 +14,17 @@ Passes when every harness run passed all its checks, and for every model:
   relative difference, absolute below 1), except models listed in CHAOTIC (reported only);
 - on every platform `energy - work` changed over the run by at most 1e-12 of the largest
   |energy| or |work| (round-off).
+With --fmi3-dir, every FMI 3 FMU there whose name matches an FMI 2 FMU is driven by
+tests/harness/fmi3_harness.c (fmi3_harness, .exe, .aarch64 in HARNESS_DIR) on the same
+platforms, from binaries/x86_64-linux, x86_64-windows and aarch64-linux; it must pass all its
+checks and give the FMI 2 run's outputs bit for bit (the same runtime, the same inputs; array
+elements row-major).
 Prints a table and a closing `N passed, M failed` line.
 """
 
 import argparse
 import os
+import re
 import pathlib
 import subprocess
 import sys
@@ -60,6 +66,25 @@ def parse(stdout):
     return outs, ew, checks, fails
 
 
+def flat_fmi2(outs):
+    """FMI 2 outputs keyed as the FMI 3 harness prints them: (name, row-major element)."""
+    cols = {}
+    for n in outs:
+        m = re.match(r"(.*)\[(\d+),(\d+)\]$", n)
+        if m:
+            cols[m.group(1)] = max(cols.get(m.group(1), 0), int(m.group(3)))
+    flat = {}
+    for n, v in outs.items():
+        m = re.match(r"(.*)\[(\d+)(?:,(\d+))?\]$", n)
+        if not m:
+            flat[f"{n}#0"] = v
+        elif m.group(3) is None:
+            flat[f"{m.group(1)}#{int(m.group(2)) - 1}"] = v
+        else:
+            flat[f"{m.group(1)}#{(int(m.group(2)) - 1) * cols[m.group(1)] + int(m.group(3)) - 1}"] = v
+    return flat
+
+
 def rel(a, b):
     worst, where = 0.0, None
     for k in a:
@@ -75,6 +100,7 @@ def main():
     ap.add_argument("harness_dir")
     ap.add_argument("--host-lib")
     ap.add_argument("--only", help="comma-separated platforms (linux64,win64,aarch64-linux)")
+    ap.add_argument("--fmi3-dir", help="FMI 3 FMUs of the same models, run by fmi3_harness")
     a = ap.parse_args()
     harness = pathlib.Path(a.harness_dir).resolve()
     work = harness / "unzipped"
@@ -145,6 +171,38 @@ def main():
             failed += not ok
             rows.append((fmu.stem, f"{plat} vs linux64", f"max rel diff {worst:.1e}", where or "",
                          "", ("ok" if ok else "FAILED") + f" (tolerance {tol:g})"))
+        fmu3 = pathlib.Path(a.fmi3_dir) / fmu.name if a.fmi3_dir else None
+        if fmu3 is None or not fmu3.exists():
+            continue
+        d3 = work / f"{fmu.stem}.fmi3"
+        if d3.exists():
+            subprocess.run(["rm", "-rf", str(d3)], check=True)
+        with zipfile.ZipFile(fmu3) as z:
+            z.extractall(d3)
+        cmds3 = {
+            "linux64": [str(harness / "fmi3_harness"), str(d3 / "binaries/x86_64-linux" / f"{ident}.so"), str(d3)],
+            "win64": [wine, str(harness / "fmi3_harness.exe"),
+                      "Z:" + str(d3 / "binaries/x86_64-windows" / f"{ident}.dll").replace("/", "\\"),
+                      "Z:" + str(d3).replace("/", "\\")],
+            "aarch64-linux": ["qemu-aarch64", "-L", "/usr/aarch64-linux-gnu",
+                              str(harness / "fmi3_harness.aarch64"),
+                              str(d3 / "binaries/aarch64-linux" / f"{ident}.so"), str(d3)],
+        }
+        if a.host_lib:
+            cmds3["host"] = [str(harness / "fmi3_harness"), a.host_lib, str(d3)]
+        for plat in platforms_here:
+            p, secs = run(cmds3[plat], env=env)
+            outs, _, checks, fails = parse(p.stdout)
+            ok = p.returncode == 0 and checks is not None and bool(outs)
+            same = ok and outs == flat_fmi2(results[plat][0])
+            passed += same
+            failed += not same
+            if not same:
+                print(f"{fmu.stem} FMI 3 {plat}: exit {p.returncode}, outputs equal to FMI 2: {ok and outs == flat_fmi2(results[plat][0])}")
+                print("\n".join(fails[:10]) or p.stdout[-2000:])
+                print(p.stderr[-2000:])
+            rows.append((fmu.stem, f"FMI 3 {plat}", checks or "-", "= FMI 2" if same else "DIFFERENT",
+                         f"{secs:.1f}", "ok" if same else "FAILED"))
     w = [max(len(str(r[i])) for r in rows) for i in range(6)]
     print("model | platform | harness | energy-work drift / max diff | s | result")
     for r in rows:
