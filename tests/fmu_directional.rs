@@ -5,6 +5,7 @@
 // index loops over a Jacobian's rows and columns read closer to the formulas
 #![allow(clippy::needless_range_loop)]
 
+mod common;
 mod fmu_support;
 
 use fmu_support::fmi3::{shipped, Fmu3};
@@ -270,4 +271,22 @@ fn fmi3_directional_and_adjoint_agree() {
         )
     };
     assert_eq!(s, fmi3Error);
+}
+
+/// A chain of 300 links carries no accelerations (their read would factor a 300 × 300 mass
+/// matrix) and so declares no states; one of 150 does.
+#[test]
+fn large_trees_carry_no_accelerations() {
+    for (n, want) in [(150, true), (300, false)] {
+        let def = common::chain(n);
+        let table = triad::variables::VariableTable::new(
+            &def,
+            &triad::mechanics::SolverSettings::default(),
+        );
+        let qdd = table
+            .vars
+            .iter()
+            .any(|v| matches!(v.accessor, triad::variables::Accessor::JointQdd { .. }));
+        assert_eq!(qdd, want, "chain{n}");
+    }
 }
