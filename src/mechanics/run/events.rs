@@ -58,7 +58,7 @@ pub fn stop_crossing(
 }
 
 /// The earliest fraction `θ ∈ (LANDED, hi)` of the step at which a limit or contact is
-/// crossed ([`stop_crossing`] with the upper bound `hi`; `hi > 1` also reports crossings at
+/// crossed (`stop_crossing` with the upper bound `hi`; `hi > 1` also reports crossings at
 /// the step's end, for an early return there).
 #[must_use]
 pub fn crossing_within(
