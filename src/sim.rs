@@ -290,13 +290,18 @@ impl Simulation {
     /// communication step; past `max_substeps` sub-steps the run stops where it got to. The
     /// error says which and when.
     pub fn advance(&mut self, h: f64) -> Result<(), AdvanceError> {
-        let result = self.advance_state(h);
+        self.advance_refreshed(h, false).map(drop)
+    }
+
+    /// The communication step ([`Simulation::advance_state_with`]), then the outputs once,
+    /// after the last sub-step, rolled back when one is not finite.
+    fn advance_refreshed(&mut self, h: f64, early: bool) -> Result<Option<f64>, AdvanceError> {
+        let result = self.advance_state_with(h, early);
         let moved = match &result {
-            Ok(moved) => *moved,
+            Ok((moved, _)) => *moved,
             Err(e) => e.error.stopped_short(),
         };
         if moved {
-            // outputs once per communication step, after the last sub-step
             self.state.refresh_outputs(&self.model);
             if let Some(what) = self.state.outputs().first_non_finite() {
                 self.state.copy_values_from(&self.saved);
@@ -307,7 +312,7 @@ impl Simulation {
                 });
             }
         }
-        result.map(drop)
+        result.map(|(_, at)| at)
     }
 
     /// [`Simulation::advance`] without the refresh of the outputs (velocity projection, energy,
@@ -332,23 +337,7 @@ impl Simulation {
     /// # Errors
     /// As [`Simulation::advance`].
     pub fn advance_early(&mut self, h: f64) -> Result<Option<f64>, AdvanceError> {
-        let result = self.advance_state_with(h, true);
-        let moved = match &result {
-            Ok((moved, _)) => *moved,
-            Err(e) => e.error.stopped_short(),
-        };
-        if moved {
-            self.state.refresh_outputs(&self.model);
-            if let Some(what) = self.state.outputs().first_non_finite() {
-                self.state.copy_values_from(&self.saved);
-                self.state.refresh_outputs(&self.model);
-                return Err(AdvanceError {
-                    error: Failure::NonFinite(what),
-                    last_good_time: self.state.time(),
-                });
-            }
-        }
-        result.map(|(_, at)| at)
+        self.advance_refreshed(h, true)
     }
 
     /// After a sub-step of size `h` from `self.sub`: if it crossed an event, the sub-step

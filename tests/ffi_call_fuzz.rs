@@ -24,28 +24,6 @@ use triad::variables::{Causality, VarType};
 
 const CALLS_PER_MODEL: usize = 25_000;
 
-/// splitmix64: small, seeded, good enough to pick calls.
-struct Rng(u64);
-
-impl Rng {
-    fn next(&mut self) -> u64 {
-        self.0 = self.0.wrapping_add(0x9e37_79b9_7f4a_7c15);
-        let mut z = self.0;
-        z = (z ^ (z >> 30)).wrapping_mul(0xbf58_476d_1ce4_e5b9);
-        z = (z ^ (z >> 27)).wrapping_mul(0x94d0_49bb_1331_11eb);
-        z ^ (z >> 31)
-    }
-    fn below(&mut self, n: usize) -> usize {
-        (self.next() % n as u64) as usize
-    }
-    fn pick<T: Copy>(&mut self, xs: &[T]) -> T {
-        xs[self.below(xs.len())]
-    }
-    fn chance(&mut self, p: f64) -> bool {
-        (self.next() >> 11) as f64 / (1u64 << 53) as f64 <= p
-    }
-}
-
 /// A shipped model with a small work bound, so that a huge step costs at most 2 000 sub-steps
 /// (the integers set stay at or below 2 000 too: a legal bound of 2^31 - 1 would let one call
 /// run for hours, which is what the bound is for).

@@ -22,25 +22,6 @@ use triad::variables::fmi3::Table3;
 
 const CALLS: usize = 6_000;
 
-/// splitmix64.
-struct Rng(u64);
-
-impl Rng {
-    fn next(&mut self) -> u64 {
-        self.0 = self.0.wrapping_add(0x9e37_79b9_7f4a_7c15);
-        let mut z = self.0;
-        z = (z ^ (z >> 30)).wrapping_mul(0xbf58_476d_1ce4_e5b9);
-        z = (z ^ (z >> 27)).wrapping_mul(0x94d0_49bb_1331_11eb);
-        z ^ (z >> 31)
-    }
-    fn below(&mut self, n: usize) -> usize {
-        (self.next() % n as u64) as usize
-    }
-    fn pick<T: Copy>(&mut self, xs: &[T]) -> T {
-        xs[self.below(xs.len())]
-    }
-}
-
 /// Every Float64 value (bits, or the status that refused them) and the serialised state.
 fn observe(f: &Fmu3, vrs: &[u32], n: usize) -> (i32, Vec<u64>, i32, Vec<u8>) {
     let (s, v) = f.get_f64(vrs, n);

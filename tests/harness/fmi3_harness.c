@@ -22,19 +22,11 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "harness_util.h"
+
 #ifdef _WIN32
-#include <windows.h>
-typedef HMODULE lib_t;
-static lib_t lib_open(const char *p) { return LoadLibraryA(p); }
-static void *lib_sym(lib_t l, const char *n) { return (void *)GetProcAddress(l, n); }
-static void lib_close(lib_t l) { FreeLibrary(l); }
 #define SEP "\\"
 #else
-#include <dlfcn.h>
-typedef void *lib_t;
-static lib_t lib_open(const char *p) { return dlopen(p, RTLD_NOW | RTLD_LOCAL); }
-static void *lib_sym(lib_t l, const char *n) { return dlsym(l, n); }
-static void lib_close(lib_t l) { dlclose(l); }
 #define SEP "/"
 #endif
 
@@ -86,50 +78,9 @@ static struct {
   StateDe deserialize;
 } api;
 
-static int passed, failed;
-
-static void check(int ok, const char *what) {
-  if (ok) {
-    passed++;
-  } else {
-    failed++;
-    printf("FAIL %s\n", what);
-  }
-}
-
 static void logger(void *env, fmi3Status st, fmi3String cat, fmi3String msg) {
   (void)env;
   fprintf(stderr, "[%d %s] %s\n", st, cat ? cat : "?", msg ? msg : "");
-}
-
-static char *read_file(const char *path) {
-  FILE *f = fopen(path, "rb");
-  long n;
-  char *buf;
-  if (!f) return NULL;
-  fseek(f, 0, SEEK_END);
-  n = ftell(f);
-  fseek(f, 0, SEEK_SET);
-  buf = malloc((size_t)n + 1);
-  if (fread(buf, 1, (size_t)n, f) != (size_t)n) n = 0;
-  buf[n] = 0;
-  fclose(f);
-  return buf;
-}
-
-/* the value of attribute `name` in the element starting at `from` (before `end`) */
-static int attr(const char *from, const char *end, const char *name, char *out, size_t cap) {
-  char key[64];
-  const char *p, *q;
-  snprintf(key, sizeof key, " %s=\"", name);
-  p = strstr(from, key);
-  if (!p || (end && p > end)) return 0;
-  p += strlen(key);
-  q = strchr(p, '"');
-  if (!q || (size_t)(q - p) >= cap) return 0;
-  memcpy(out, p, (size_t)(q - p));
-  out[q - p] = 0;
-  return 1;
 }
 
 #define MAXV 4096
@@ -203,15 +154,6 @@ static fmi3Status run_steps(fmi3Instance c, size_t from, size_t to, double h, do
   return 0;
 }
 
-static void *sym(lib_t l, const char *name) {
-  void *p = lib_sym(l, name);
-  if (!p) {
-    printf("FAIL missing export %s\n", name);
-    exit(2);
-  }
-  return p;
-}
-
 int main(int argc, char **argv) {
   char path[4096], token[128] = "", res[8192];
   char *xml;
@@ -237,7 +179,7 @@ int main(int argc, char **argv) {
   parse_variables(xml);
   lib = lib_open(argv[1]);
   if (!lib) {
-    printf("FAIL cannot load %s\n", argv[1]);
+    printf("FAIL cannot load %s: %s\n", argv[1], lib_error());
     return 2;
   }
   api.version = (GetStr)sym(lib, "fmi3GetVersion");
