@@ -11,41 +11,37 @@ use super::instance::{Instance, Op};
 use super::params::Base;
 use super::status::{FmuError, Status};
 use crate::mechanics::Quantity;
-use crate::variables::linear::{quantity, states};
+use crate::variables::linear::{quantity, states, States};
 use crate::variables::{Accessor, Causality, Variable};
 
 impl Instance {
-    /// Why this instance provides no directional derivatives, if it does not.
-    fn derivatives_unavailable(&self) -> Option<String> {
+    /// The states this instance declares, or why it provides no directional derivatives.
+    fn declared_states(&self) -> Result<States, FmuError> {
         if let Err(e) = crate::mechanics::supported(&self.def) {
-            return Some(format!(
+            return Err(FmuError::rejected(format!(
                 "this model provides no directional derivatives: {e}"
-            ));
+            )));
         }
-        states(&self.table).is_none().then(|| {
-            "this model provides no directional derivatives (no joint coordinates to be states, or too many for the description's dependencies)".to_string()
+        states(&self.table).ok_or_else(|| {
+            FmuError::rejected("this model provides no directional derivatives (no joint coordinates to be states, or too many for the description's dependencies)")
         })
     }
 
     /// The seed slot of a known: `(0, i)` coordinate, `(1, i)` rate, `(2, i)` input.
-    fn known_slot(&self, v: &Variable, at: &dyn Fn(usize) -> Option<usize>) -> Option<(u8, usize)> {
+    fn known_slot(
+        &self,
+        v: &Variable,
+        st: &States,
+        at: &dyn Fn(usize) -> Option<usize>,
+    ) -> Option<(u8, usize)> {
+        let index = self.index.get(&v.vr).copied();
+        let declared = |list: &[usize]| index.is_some_and(|i| list.contains(&i));
         match v.accessor {
             Accessor::Input(i) => Some((2, i)),
-            Accessor::JointQ { joint, k } if v.causality == Causality::Output => {
-                self.is_state(v).then(|| at(joint).map(|a| (0, a + k)))?
-            }
-            Accessor::JointQd { joint, k } => {
-                self.is_state(v).then(|| at(joint).map(|a| (1, a + k)))?
-            }
+            Accessor::JointQ { joint, k } if declared(&st.q) => at(joint).map(|a| (0, a + k)),
+            Accessor::JointQd { joint, k } if declared(&st.qd) => at(joint).map(|a| (1, a + k)),
             _ => None,
         }
-    }
-
-    fn is_state(&self, v: &Variable) -> bool {
-        states(&self.table).is_some_and(|st| {
-            let i = self.table.vars.iter().position(|w| w.vr == v.vr);
-            i.is_some_and(|i| st.q.contains(&i) || st.qd.contains(&i))
-        })
     }
 
     /// `C δx + D δu` for the table variables `unknowns` along `seed` over `knowns`.
@@ -55,9 +51,7 @@ impl Instance {
         knowns: &[&Variable],
         seed: &[f64],
     ) -> Result<Vec<f64>, FmuError> {
-        if let Some(why) = self.derivatives_unavailable() {
-            return Err(FmuError::rejected(why));
-        }
+        let st = self.declared_states()?;
         if let Some(k) = seed.iter().position(|x| !x.is_finite()) {
             return Err(FmuError::rejected(format!(
                 "seed {k} ({}) is not finite",
@@ -74,7 +68,7 @@ impl Instance {
         let at = |j: usize| op.dynamics.joint_at(j);
         let (mut dq, mut dnu, mut du) = (vec![0.0; n], vec![0.0; n], vec![0.0; op.u.len()]);
         for (v, &s) in knowns.iter().zip(seed) {
-            match self.known_slot(v, &at) {
+            match self.known_slot(v, &st, &at) {
                 Some((0, i)) => dq[i] += s,
                 Some((1, i)) => dnu[i] += s,
                 Some((_, i)) => du[i] += s,
