@@ -30,8 +30,9 @@
 //! - a step whose outputs are not all finite is rolled back ([`Failure::NonFinite`]).
 
 use crate::mechanics::{
-    above_floor, controlled_step, crossing_within, step_state, Model, ModelDef, ModelError,
-    Operating, SolverSettings, State, StepError, Verdict, LANDED,
+    above_floor, begin_step_map, controlled_step, crossing_within, finish_step_map, step_state,
+    Model, ModelDef, ModelError, Operating, SolverSettings, State, StepError, StepMap, Verdict,
+    LANDED,
 };
 use thiserror::Error;
 
@@ -204,6 +205,24 @@ impl Simulation {
     /// Why the model has none (a loop, contact).
     pub fn operating(&self) -> Result<Operating, String> {
         Operating::of(&self.model, &self.state).map_err(|e| e.to_string())
+    }
+
+    /// The exact discrete-time linear model of the communication step `h` from the current
+    /// state (`δx(t+h) = Ad δx(t) + Bd δu`, `x` the minimal coordinates of
+    /// [`Simulation::operating`], `u` every input of the model): the step's tangent map
+    /// (`mechanics::step::tangent`) carried through every sub-step and stage that
+    /// [`Simulation::advance`] takes, between the embedding's and the read-off's tangents
+    /// (`mechanics::model::minimal`). The step sizes are those the run takes (with error
+    /// control: held at the accepted ones). The simulation advances by `h`.
+    ///
+    /// # Errors
+    /// A loop or contact (no minimal coordinates), a failed step, or a singular mass matrix.
+    pub fn step_map(&mut self, h: f64) -> Result<StepMap, String> {
+        begin_step_map(&self.model, &mut self.state)?;
+        let advanced = self.advance(h);
+        let map = finish_step_map(&self.model, &mut self.state);
+        advanced.map_err(|e| e.error.to_string())?;
+        map
     }
 
     /// The joint accelerations at the current state and inputs (the outputs `joint.J.qdd`).

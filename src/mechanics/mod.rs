@@ -45,5 +45,6 @@ pub use run::events::{crossing_within, LANDED};
 pub use run::operating::Operating;
 pub use run::outputs::{BodyOutput, JointOutput, Outputs};
 pub use run::state::State;
+pub use run::step_map::{begin_step_map, finish_step_map, StepMap};
 pub use step::error::StepError;
 pub use step::stage::{gamma1, StepStats};

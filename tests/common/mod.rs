@@ -2,6 +2,8 @@
 //! double pendulum, heavy top, chainN as in `shared/peers/models/*.json`).
 #![allow(dead_code)]
 
+pub mod trees;
+
 use triad::math::{exp_so3, Mat3, Vec3};
 use triad::mechanics::{
     BodyDef, BodyLoadDef, Frame, FreeBodyInitial, JointDef, JointInitial, JointType, Model,

@@ -18,7 +18,8 @@
 //! - the valid range of every parameter and solver setting (`ranges`), shared by the spec
 //!   check and the FMU;
 //! - the continuous-time dynamics of trees in minimal coordinates, generic over the scalar
-//!   (`tree_dynamics`), and its exact linear models by dual numbers (`linear`);
+//!   (`tree_dynamics`), its exact linear models by dual numbers (`linear`), and the tangents
+//!   between its coordinates and the nodal ones (`minimal`);
 //! - test models shared by several layers' unit tests (`fixtures`).
 //!
 //! Uses: `linalg` and `crate::math`; never `step` or `run`.
@@ -38,6 +39,7 @@ pub(crate) mod kernels;
 pub mod kinematics;
 pub mod linear;
 pub mod loops;
+pub mod minimal;
 pub(crate) mod one_sided;
 pub(crate) mod projection;
 pub mod ranges;

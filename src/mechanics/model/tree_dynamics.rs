@@ -443,14 +443,24 @@ impl TreeDynamics {
         m
     }
 
+    /// Mass of body `b`, kg.
+    pub(crate) fn body_mass(&self, b: usize) -> f64 {
+        self.mass[b]
+    }
+
+    /// Inertia of body `b` about its centre of mass, body axes, kg·m².
+    pub(crate) fn body_inertia<T: Real>(&self, b: usize) -> Matrix3<T> {
+        cm::<T>(&self.inertia[b])
+    }
+
     /// Centre of mass of body `b` (world) and its velocity, at `m`.
-    fn com_of<T: Real>(&self, m: &Motion<T>, b: usize) -> (Vector3<T>, Vector3<T>) {
+    pub(crate) fn com_of<T: Real>(&self, m: &Motion<T>, b: usize) -> (Vector3<T>, Vector3<T>) {
         let rc = m.r[b] * cv::<T>(&self.com[b]);
         (m.o[b] + rc, m.v[b] + m.w[b].cross(&rc))
     }
 
     /// World-frame inertia about the centre of mass.
-    fn inertia_world<T: Real>(&self, m: &Motion<T>, b: usize) -> Matrix3<T> {
+    pub(crate) fn inertia_world<T: Real>(&self, m: &Motion<T>, b: usize) -> Matrix3<T> {
         m.r[b] * cm::<T>(&self.inertia[b]) * m.r[b].transpose()
     }
 
@@ -516,26 +526,7 @@ impl TreeDynamics {
             f[b] = fb;
             nn[b] = nb_ + pg.cross(&fb);
         }
-        for &b in self.order.iter().rev() {
-            let p = match self.parent_of[b] {
-                Parent::Joint(j) => self.joints[j].as_ref().and_then(|d| d.parent),
-                Parent::Free(_) => None,
-            };
-            if let Some(p) = p {
-                let (fb, nb_) = (f[b], nn[b]);
-                f[p] += fb;
-                nn[p] += nb_;
-            }
-        }
-        let mut res = vec![T::zero(); self.coords.len()];
-        for (k, co) in self.coords.iter().enumerate() {
-            let b = match co {
-                Coord::Joint { joint, .. } => self.joints[*joint].as_ref().expect("joint").child,
-                Coord::Free { body, .. } => *body,
-            };
-            let (wk, uk, pk) = &m.cols[k];
-            res[k] = wk.dot(&(nn[b] - pk.cross(&f[b]))) + uk.dot(&f[b]);
-        }
+        let mut res = self.generalized(&m, f, nn);
         if !inertial_only {
             for jd in self.joints.iter().flatten() {
                 if jd.kind == JointType::Spherical {
@@ -565,6 +556,34 @@ impl TreeDynamics {
                     res[jd.at + k] -= gen;
                 }
             }
+        }
+        res
+    }
+
+    /// The generalized forces `Q_k = ω_k · (N − p_k × F) + u_k · F` of body forces `f` and
+    /// moments `n` about the world origin (per body, world frame), `F`, `N` the subtree totals
+    /// (len `n`): `Σ_b J_bᵀ w_b` for the twist Jacobians `J_b` of the bodies.
+    pub fn generalized<T: Real>(
+        &self,
+        m: &Motion<T>,
+        mut f: Vec<Vector3<T>>,
+        mut nn: Vec<Vector3<T>>,
+    ) -> Vec<T> {
+        for &b in self.order.iter().rev() {
+            if let (_, Some(p)) = self.own_dofs(b) {
+                let (fb, nb_) = (f[b], nn[b]);
+                f[p] += fb;
+                nn[p] += nb_;
+            }
+        }
+        let mut res = vec![T::zero(); self.coords.len()];
+        for (k, co) in self.coords.iter().enumerate() {
+            let b = match co {
+                Coord::Joint { joint, .. } => self.joints[*joint].as_ref().expect("joint").child,
+                Coord::Free { body, .. } => *body,
+            };
+            let (wk, uk, pk) = &m.cols[k];
+            res[k] = wk.dot(&(nn[b] - pk.cross(&f[b]))) + uk.dot(&f[b]);
         }
         res
     }
@@ -675,6 +694,12 @@ impl TreeDynamics {
             .is_some_and(|d| d.kind == JointType::Spherical)
     }
 
+    /// The operating orientation of free body `b` (`R₀`, world ← body).
+    #[must_use]
+    pub fn body_rot0(&self, b: usize) -> Mat3 {
+        self.body_rot0[b]
+    }
+
     /// The operating orientation of spherical joint `j` (`M₀`).
     #[must_use]
     pub fn joint_rot0(&self, j: usize) -> Mat3 {
@@ -699,25 +724,31 @@ impl TreeDynamics {
     /// `b(i)` and its ancestors. O(N·depth).
     #[must_use]
     pub fn mass_matrix(&self, q: &[f64]) -> nalgebra::DMatrix<f64> {
-        type S6 = nalgebra::SMatrix<f64, 6, 6>;
-        type V6 = nalgebra::SVector<f64, 6>;
+        self.mass_matrix_of(q)
+    }
+
+    /// [`TreeDynamics::mass_matrix`] in any scalar (dual numbers: its derivative).
+    #[must_use]
+    pub fn mass_matrix_of<T: Real>(&self, q: &[T]) -> nalgebra::DMatrix<T> {
+        type S6<T> = nalgebra::SMatrix<T, 6, 6>;
+        type V6<T> = nalgebra::SVector<T, 6>;
         let n = self.coords.len();
-        let zero = vec![0.0; n];
+        let zero = vec![T::zero(); n];
         let m = self.motion(q, &zero, None);
         let nb = self.mass.len();
-        let mut ic = vec![S6::zeros(); nb];
+        let mut ic = vec![S6::<T>::zeros(); nb];
         for b in 0..nb {
-            let (c, _) = self.com_of(&m, b);
+            let (cg, _) = self.com_of(&m, b);
             let iw = self.inertia_world(&m, b);
-            let (ch, mass) = (hat(&c), self.mass[b]);
-            let mut blk = S6::zeros();
+            let (ch, mass) = (hat(&cg), c::<T>(self.mass[b]));
+            let mut blk = S6::<T>::zeros();
             blk.fixed_view_mut::<3, 3>(0, 0)
                 .copy_from(&(iw + ch * ch.transpose() * mass));
             blk.fixed_view_mut::<3, 3>(0, 3).copy_from(&(ch * mass));
             blk.fixed_view_mut::<3, 3>(3, 0)
                 .copy_from(&(ch.transpose() * mass));
             blk.fixed_view_mut::<3, 3>(3, 3)
-                .copy_from(&(Mat3::identity() * mass));
+                .copy_from(&(Matrix3::identity() * mass));
             ic[b] = blk;
         }
         for &b in self.order.iter().rev() {
@@ -726,12 +757,12 @@ impl TreeDynamics {
                 ic[p] += child;
             }
         }
-        let col = |k: usize| -> V6 {
+        let col = |k: usize| -> V6<T> {
             let (w, u, p) = m.cols[k];
             let v = u - w.cross(&p);
-            V6::new(w[0], w[1], w[2], v[0], v[1], v[2])
+            V6::<T>::new(w[0], w[1], w[2], v[0], v[1], v[2])
         };
-        let mut mm = nalgebra::DMatrix::<f64>::zeros(n, n);
+        let mut mm = nalgebra::DMatrix::<T>::zeros(n, n);
         for b in 0..nb {
             let (own, _) = self.own_dofs(b);
             for i in own {

@@ -128,6 +128,9 @@ fn compose_from(
     ws.hist.copy_from_slice(&state.hist);
     ws.hprev = state.hprev;
     ws.memory = state.memory;
+    if let Some(t) = ws.tangent.as_mut() {
+        t.rewind();
+    }
     let held = Held {
         inputs: &state.inputs,
         damping: &state.damping,
@@ -155,5 +158,8 @@ fn commit(state: &mut State, h: f64, stats: &StepStats) {
     std::mem::swap(&mut state.hist, &mut ws.hist);
     state.hprev = ws.hprev;
     state.memory = ws.memory;
+    if let Some(t) = ws.tangent.as_mut() {
+        t.accept();
+    }
     state.t += h;
 }

@@ -3,7 +3,8 @@
 //! with the reported rates projected onto the admissible velocities), and the entry points
 //! that advance it (`advance`: `step`, `step_state`, `controlled_step`), the step-size control
 //! (`control`), the joint-stop crossings that error-controlled steps end on (`events`), and
-//! the operating point of a linear model read off a state (`operating`).
+//! the operating point of a linear model read off a state (`operating`), and the
+//! discrete-time linear model of a communication step (`step_map`).
 //!
 //! Uses: `step`, `model`, `linalg` and `crate::math`.
 
@@ -13,3 +14,4 @@ pub(crate) mod events;
 pub(crate) mod operating;
 pub(crate) mod outputs;
 pub(crate) mod state;
+pub(crate) mod step_map;

@@ -11,7 +11,8 @@
 //! the state's current values.
 
 use super::state::State;
-use crate::math::{quat_to_matrix, Mat3};
+use crate::math::{exp_so3, matrix_to_quat, quat_to_matrix, Mat3, Vec3};
+use crate::mechanics::model::def::{JointInitial, ModelDef};
 use crate::mechanics::model::linear::{Linear, Quantity};
 use crate::mechanics::model::runtime::Model;
 use crate::mechanics::model::tree_dynamics::{Coord, TreeDynamics, Unsupported};
@@ -88,6 +89,49 @@ impl Operating {
     /// A message when the joint-space mass matrix is singular.
     pub fn linearize(&self, ys: &[Quantity]) -> Result<Linear, String> {
         self.dynamics.linearize(&self.q, &self.nu, &self.u, ys)
+    }
+
+    /// `def` with its initial state at `x = (q, ν)` of this operating point's coordinates
+    /// (the rotation vectors applied exactly: `M₀ exp(θ̂)`, `exp(θ̂) R₀`), so that a run
+    /// started from it starts at `x`.
+    ///
+    /// # Panics
+    /// When `x` is not `2n` long.
+    #[must_use]
+    pub fn initial_def(&self, def: &ModelDef, x: &[f64]) -> ModelDef {
+        let n = self.q.len();
+        assert_eq!(x.len(), 2 * n, "initial_def: x length");
+        let (q, nu) = x.split_at(n);
+        let mut out = def.clone();
+        let v3 = |v: &[f64], at: usize| Vec3::new(v[at], v[at + 1], v[at + 2]);
+        for (j, jd) in out.joints.iter_mut().enumerate() {
+            let Some(at) = self.dynamics.joint_at(j) else {
+                continue;
+            };
+            if self.dynamics.is_spherical(j) {
+                let m = self.dynamics.joint_rot0(j) * exp_so3(&v3(q, at));
+                jd.initial = JointInitial::Spherical {
+                    quat: matrix_to_quat(&m),
+                    w: v3(nu, at),
+                };
+            } else {
+                let k = jd.kind.dof();
+                jd.initial = JointInitial::Coords {
+                    q: q[at..at + k].to_vec(),
+                    qd: nu[at..at + k].to_vec(),
+                };
+            }
+        }
+        for f in &mut out.free_bodies {
+            let Some(at) = self.dynamics.free_at(f.body) else {
+                continue;
+            };
+            f.position = v3(q, at);
+            f.orientation = exp_so3(&v3(q, at + 3)) * self.dynamics.body_rot0(f.body);
+            f.velocity = v3(nu, at);
+            f.angular_velocity = v3(nu, at + 3);
+        }
+        out
     }
 
     /// The names of the coordinates then of the rates (`joint.J.q`, `joint.J.q[k]`,

@@ -11,7 +11,8 @@
 //! - `predictor` (the Newton start from the previous stages), `finish` (velocity update, work
 //!   account, unwrapped angles), `momentum` (bodies in contact: the momenta exact at any
 //!   tolerance), `identity` (the spurious roots a converged stage is refused for),
-//!   `stage` (a robust stage, the order-4 composition), `error`.
+//!   `stage` (a robust stage, the order-4 composition), `tangent` (the step's exact tangent map,
+//!   carried through a run), `error`.
 //!
 //! Uses: `model`, `linalg` and `crate::math`; never `run`.
 
@@ -29,5 +30,6 @@ pub(crate) mod newton;
 pub(crate) mod predictor;
 pub(crate) mod reduced;
 pub(crate) mod stage;
+pub(crate) mod tangent;
 pub(crate) mod turn;
 pub(crate) mod work;

@@ -200,10 +200,12 @@ pub(crate) fn inertia_and_forces(model: &Model, ws: &mut Work, held: &Held, h: f
         if jac {
             let c = &mut ws.cbody[b];
             c.fill(0.0);
-            c[0] = br.mass;
-            for i in 0..3 {
-                for j in 0..3 {
-                    c[4 * (i + 1) + j + 1] = br.e[(i, j)];
+            if ws.inertia_in_jacobian {
+                c[0] = br.mass;
+                for i in 0..3 {
+                    for j in 0..3 {
+                        c[4 * (i + 1) + j + 1] = br.e[(i, j)];
+                    }
                 }
             }
             ws.xbody[b].fill(0.0);

@@ -329,6 +329,12 @@ fn stage(
     if !work.is_finite() || ws.acc.iter().any(|x| !x.is_finite()) {
         return Err(StepError::NonFinite("state"));
     }
+    // the tangent map through this stage (discrete-time linear models only)
+    if let Some(mut t) = ws.tangent.take() {
+        let carried = t.stage(model, ws, held, h);
+        ws.tangent = Some(t);
+        carried?;
+    }
     // v_{n+1} = vₙ + 2a/h in double-double (two-sum), a from the final evaluation
     let two_over_h = 2.0 / h;
     for ((vn, vlo), acc) in ws.vn.iter_mut().zip(ws.vlo.iter_mut()).zip(&ws.acc) {

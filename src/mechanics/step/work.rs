@@ -1,6 +1,7 @@
 //! The preallocated Newton workspace of a step and the loads held over it.
 
 use super::reduced::work::RedWork;
+use super::tangent::Tangent;
 use crate::mechanics::linalg::border::Border;
 use crate::mechanics::linalg::tree::Block;
 use crate::mechanics::model::runtime::Model;
@@ -157,6 +158,12 @@ pub(crate) struct Work {
     pub drhs: Vec<f64>,
     /// Workspace of the reduced (joint-increment) iteration; empty for loop models.
     pub red: RedWork,
+    /// The step's tangent map carried along (`tangent`; for a discrete-time linear model
+    /// only, `None` in a plain run).
+    pub tangent: Option<Box<Tangent>>,
+    /// Whether a Jacobian pass assembles the inertia `M` into the body blocks (true; the
+    /// tangent map assembles the other terms alone, `tangent`).
+    pub inertia_in_jacobian: bool,
 }
 
 impl Work {
@@ -223,6 +230,8 @@ impl Work {
             dpiv: vec![0; nd],
             drhs: vec![0.0; nd],
             red: RedWork::new(model),
+            tangent: None,
+            inertia_in_jacobian: true,
         }
     }
 }

@@ -1,0 +1,210 @@
+//! Minimal coordinates of a tree (`tree_dynamics`) and the step's nodal coordinates: the
+//! tangents of the embedding and of the read-off, which put the step's tangent map
+//! (`step::tangent`) into the linear model's state `x = (q, ν)`.
+//!
+//! ```text
+//! embedding  φ_b = o_b + R_b c_b,  dᵢ = R_b eᵢ,  φ̇_b = v_b + ω_b × R_b c_b,  ḋᵢ = ω_b × dᵢ
+//!            per direction of x:  ξ_b = (δφ_b, ½ Σᵢ dᵢ × δdᵢ),  δv = δ(φ̇, ḋᵢ)    (dual numbers)
+//! read-off   q:  δq = M(q)⁻¹ Σ_b J_bᵀ (m_b δφ_b, I_b δθ_b)      (exact for ξ tangent to the tree)
+//!            ν = M(q)⁻¹ b,  b = Σ_b J_bᵀ (m_b φ̇_b, Σᵢ dᵢ × Σⱼ Eᵢⱼ ḋⱼ)    (the outputs' M-orthogonal
+//!            projection of the nodal velocities, `projection.rs`, read as joint rates)
+//!            δν = M⁻¹ (δb − δM ν)          (δb, δM by one dual pass along (δq, ξ, δv))
+//! ```
+//!
+//! `J_b` is body `b`'s twist Jacobian at its centre of mass (`TreeDynamics::generalized`),
+//! `I_b` its world inertia about the centre of mass, `E = ½ tr(J) I − J` its Euler tensor.
+//! At the read-off the operating orientations of spherical joints and free bodies are the end
+//! state's, so the rotation-vector coordinates are perturbations about the end's orientations.
+
+use super::tree_dynamics::{c, Real, TreeDynamics};
+use nalgebra::{DMatrix, DVector, Matrix3, Vector3};
+use num_dual::Dual64;
+
+/// Columns of perturbations in nodal form: per column 6 twist increments and 12 nodal
+/// velocities per body (column-major), as `step::tangent::Tangent` holds them.
+#[derive(Clone, Debug)]
+pub struct NodalColumns {
+    /// Number of columns.
+    pub cols: usize,
+    /// `(δφ, δθ)` per body, per column, m and rad (world).
+    pub xi: Vec<f64>,
+    /// `δ(φ̇, ḋ₁, ḋ₂, ḋ₃)` per body, per column, m/s and 1/s (world).
+    pub dv: Vec<f64>,
+}
+
+/// Body `b`'s Euler tensor `E = ½ tr(J) I − J` (body axes).
+fn euler<T: Real>(j: &Matrix3<T>) -> Matrix3<T> {
+    Matrix3::identity() * (j.trace() * c::<T>(0.5)) - j
+}
+
+impl TreeDynamics {
+    /// The nodal coordinates and velocities (12 and 12 per body, world) at `(q, ν)`.
+    pub fn nodal<T: Real>(&self, q: &[T], nu: &[T]) -> (Vec<T>, Vec<T>) {
+        let m = self.motion(q, nu, None);
+        let nb = self.n_bodies();
+        let (mut x, mut v) = (vec![T::zero(); 12 * nb], vec![T::zero(); 12 * nb]);
+        for b in 0..nb {
+            let (phi, phid) = self.com_of(&m, b);
+            for a in 0..3 {
+                x[12 * b + a] = phi[a];
+                v[12 * b + a] = phid[a];
+            }
+            for i in 0..3 {
+                let d = m.r[b].column(i).into_owned();
+                let dd = m.w[b].cross(&d);
+                for a in 0..3 {
+                    x[12 * b + 3 + 3 * i + a] = d[a];
+                    v[12 * b + 3 + 3 * i + a] = dd[a];
+                }
+            }
+        }
+        (x, v)
+    }
+
+    /// The embedding's tangent at `(q, ν)`: one nodal column per direction of `x = (q, ν)`
+    /// (`2n` columns, module formulas).
+    #[must_use]
+    pub fn embed_tangent(&self, q: &[f64], nu: &[f64]) -> NodalColumns {
+        let n = self.n();
+        let nb = self.n_bodies();
+        let mut out = NodalColumns {
+            cols: 2 * n,
+            xi: vec![0.0; 6 * nb * 2 * n],
+            dv: vec![0.0; 12 * nb * 2 * n],
+        };
+        for col in 0..2 * n {
+            let qd: Vec<Dual64> = (0..n)
+                .map(|i| Dual64::new(q[i], f64::from(u8::from(col == i))))
+                .collect();
+            let vd: Vec<Dual64> = (0..n)
+                .map(|i| Dual64::new(nu[i], f64::from(u8::from(col == n + i))))
+                .collect();
+            let (x, v) = self.nodal(&qd, &vd);
+            let xi = &mut out.xi[col * 6 * nb..(col + 1) * 6 * nb];
+            for b in 0..nb {
+                let mut th = Vector3::<f64>::zeros();
+                for i in 0..3 {
+                    let o = 12 * b + 3 + 3 * i;
+                    let d = Vector3::new(x[o].re, x[o + 1].re, x[o + 2].re);
+                    let dd = Vector3::new(x[o].eps, x[o + 1].eps, x[o + 2].eps);
+                    th += d.cross(&dd) * 0.5;
+                }
+                for a in 0..3 {
+                    xi[6 * b + a] = x[12 * b + a].eps;
+                    xi[6 * b + 3 + a] = th[a];
+                }
+            }
+            for (o, vi) in out.dv[col * 12 * nb..(col + 1) * 12 * nb]
+                .iter_mut()
+                .zip(&v)
+            {
+                *o = vi.eps;
+            }
+        }
+        out
+    }
+
+    /// The read-off's tangent at the end state: minimal coordinates `q` (operating
+    /// orientations set to the end's), nodal coordinates `xq` and velocities `xv` (12 per body),
+    /// applied to `cols`; returns `δx = (δq, δν)` (2n × cols).
+    ///
+    /// # Errors
+    /// A message when the joint-space mass matrix is singular.
+    pub fn readoff_tangent(
+        &self,
+        q: &[f64],
+        xq: &[f64],
+        xv: &[f64],
+        cols: &NodalColumns,
+    ) -> Result<DMatrix<f64>, String> {
+        let n = self.n();
+        let nb = self.n_bodies();
+        let singular = || "the joint-space mass matrix is singular".to_string();
+        let lu = self.mass_matrix(q).lu();
+        let b0 = self.rate_load(q, xq, xv);
+        let nu = lu.solve(&DVector::from_vec(b0)).ok_or_else(singular)?;
+        let m0 = self.motion(q, &vec![0.0; n], None);
+        let mut out = DMatrix::zeros(2 * n, cols.cols);
+        for col in 0..cols.cols {
+            let xi = &cols.xi[col * 6 * nb..(col + 1) * 6 * nb];
+            let dv = &cols.dv[col * 12 * nb..(col + 1) * 12 * nb];
+            // δq = M⁻¹ Σ J_bᵀ (m δφ, I δθ)
+            let (mut f, mut nn) = (vec![Vector3::zeros(); nb], vec![Vector3::zeros(); nb]);
+            for b in 0..nb {
+                let dphi = Vector3::new(xi[6 * b], xi[6 * b + 1], xi[6 * b + 2]);
+                let dth = Vector3::new(xi[6 * b + 3], xi[6 * b + 4], xi[6 * b + 5]);
+                let (phi, _) = self.com_of(&m0, b);
+                f[b] = dphi * self.body_mass(b);
+                nn[b] = self.inertia_world(&m0, b) * dth + phi.cross(&f[b]);
+            }
+            let rhs = self.generalized(&m0, f, nn);
+            let dq = lu.solve(&DVector::from_vec(rhs)).ok_or_else(singular)?;
+            // δν = M⁻¹ (δb − δM ν) along (δq, ξ, δv)
+            let qd: Vec<Dual64> = (0..n).map(|i| Dual64::new(q[i], dq[i])).collect();
+            let mut xqd: Vec<Dual64> = xq.iter().map(|&x| Dual64::from(x)).collect();
+            for b in 0..nb {
+                let dth = Vector3::new(xi[6 * b + 3], xi[6 * b + 4], xi[6 * b + 5]);
+                for i in 0..3 {
+                    let o = 12 * b + 3 + 3 * i;
+                    let d = Vector3::new(xq[o], xq[o + 1], xq[o + 2]);
+                    let dd = dth.cross(&d);
+                    for a in 0..3 {
+                        xqd[o + a].eps = dd[a];
+                    }
+                }
+                for a in 0..3 {
+                    xqd[12 * b + a].eps = xi[6 * b + a];
+                }
+            }
+            let xvd: Vec<Dual64> = xv
+                .iter()
+                .zip(dv)
+                .map(|(&x, &d)| Dual64::new(x, d))
+                .collect();
+            let db = self.rate_load(&qd, &xqd, &xvd);
+            let dm = self.mass_matrix_of(&qd);
+            let mut r = DVector::zeros(n);
+            for i in 0..n {
+                let mut s = db[i].eps;
+                for j in 0..n {
+                    s -= dm[(i, j)].eps * nu[j];
+                }
+                r[i] = s;
+            }
+            let dnu = lu.solve(&r).ok_or_else(singular)?;
+            for i in 0..n {
+                out[(i, col)] = dq[i];
+                out[(n + i, col)] = dnu[i];
+            }
+        }
+        Ok(out)
+    }
+
+    /// `b = Σ_b J_bᵀ (m φ̇, Σᵢ dᵢ × Σⱼ Eᵢⱼ ḋⱼ)` at minimal `q` and nodal `xq`, `xv` (module
+    /// formulas): the generalized momentum of the nodal velocities.
+    fn rate_load<T: Real>(&self, q: &[T], xq: &[T], xv: &[T]) -> Vec<T> {
+        let n = self.n();
+        let nb = self.n_bodies();
+        let m = self.motion(q, &vec![T::zero(); n], None);
+        let (mut f, mut nn) = (vec![Vector3::zeros(); nb], vec![Vector3::zeros(); nb]);
+        let node = |x: &[T], b: usize, k: usize| {
+            let o = 12 * b + 3 * k;
+            Vector3::new(x[o], x[o + 1], x[o + 2])
+        };
+        for b in 0..nb {
+            let e = euler(&self.body_inertia::<T>(b));
+            let mut l = Vector3::zeros();
+            for i in 0..3 {
+                let mut p = Vector3::zeros();
+                for j in 0..3 {
+                    p += node(xv, b, j + 1) * e[(i, j)];
+                }
+                l += node(xq, b, i + 1).cross(&p);
+            }
+            let (phi, _) = self.com_of(&m, b);
+            f[b] = node(xv, b, 0) * c::<T>(self.body_mass(b));
+            nn[b] = l + phi.cross(&f[b]);
+        }
+        self.generalized(&m, f, nn)
+    }
+}

@@ -1,0 +1,77 @@
+//! The discrete-time linear model of a run's communication step: the step's tangent map
+//! (`step::tangent`) started from the embedding's tangent of the operating point and read off
+//! in minimal coordinates at the end (`model::minimal`).
+//!
+//! ```text
+//! columns at the start:  ∂(ξ, δv)/∂x  (2n, the embedding),  δu = eⱼ  (one per input)
+//! carried through every stage of every (sub-)step taken, then
+//! [Ad Bd] = ∂x(t+h)/∂(x(t), u) = read-off tangent at the end × the columns
+//! ```
+
+use super::operating::Operating;
+use super::state::State;
+use crate::mechanics::model::minimal::NodalColumns;
+use crate::mechanics::model::runtime::Model;
+use crate::mechanics::step::tangent::Tangent;
+use nalgebra::DMatrix;
+
+/// The discrete-time linear model of one communication step `δx(t+h) = Ad δx(t) + Bd δu`.
+#[derive(Clone, Debug)]
+pub struct StepMap {
+    /// `∂x(t+h)/∂x(t)`, 2n × 2n.
+    pub ad: DMatrix<f64>,
+    /// `∂x(t+h)/∂u`, 2n × (every input of the model, in `Model::inputs` order).
+    pub bd: DMatrix<f64>,
+    /// `x(t+h)` (the rotation-vector coordinates 0: about the end's own orientations).
+    pub x1: Vec<f64>,
+}
+
+/// Starts carrying the step's tangent map in `state` from its operating point (module docs).
+///
+/// # Errors
+/// Why the model has no minimal coordinates (a loop, contact).
+pub fn begin_step_map(model: &Model, state: &mut State) -> Result<(), String> {
+    let op = Operating::of(model, state).map_err(|e| e.to_string())?;
+    let (n, m) = (op.q.len(), model.inputs.len());
+    let nb = model.bodies.len();
+    let emb = op.dynamics.embed_tangent(&op.q, &op.nu);
+    let cols = 2 * n + m;
+    let mut xi = emb.xi;
+    xi.resize(6 * nb * cols, 0.0);
+    let mut dv = emb.dv;
+    dv.resize(12 * nb * cols, 0.0);
+    let mut du = vec![0.0; m * cols];
+    for i in 0..m {
+        du[(2 * n + i) * m + i] = 1.0;
+    }
+    state.ws.tangent = Some(Box::new(Tangent::new(model, cols, xi, dv, du)));
+    Ok(())
+}
+
+/// Stops carrying the tangent map and reads it off at `state` (the end of the step).
+///
+/// # Errors
+/// No tangent was carried, no minimal coordinates, or a singular mass matrix.
+pub fn finish_step_map(model: &Model, state: &mut State) -> Result<StepMap, String> {
+    let tangent = state
+        .ws
+        .tangent
+        .take()
+        .ok_or("no step tangent was carried")?;
+    let end = Operating::of(model, state).map_err(|e| e.to_string())?;
+    let n = end.q.len();
+    let cols = tangent.cols();
+    let nodal = NodalColumns {
+        cols,
+        xi: (0..cols).flat_map(|c| tangent.xi(c).to_vec()).collect(),
+        dv: (0..cols).flat_map(|c| tangent.dv(c).to_vec()).collect(),
+    };
+    let dx = end
+        .dynamics
+        .readoff_tangent(&end.q, &state.q, &state.v, &nodal)?;
+    Ok(StepMap {
+        ad: dx.columns(0, 2 * n).into_owned(),
+        bd: dx.columns(2 * n, cols - 2 * n).into_owned(),
+        x1: end.q.iter().chain(&end.nu).copied().collect(),
+    })
+}

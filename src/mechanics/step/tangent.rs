@@ -1,0 +1,408 @@
+//! The tangent map of the step: exact derivatives of a stage's end `(q_{n+1}, v_{n+1})` with
+//! respect to its start `(qₙ, vₙ)` and the inputs `u`, by the implicit function theorem on the
+//! converged stage; carried through every stage and step of a run (`Work::tangent`).
+//!
+//! A perturbation of the state is a column: per body the twist increment `ξ = (δφ, δθ)` of its
+//! coordinates (`δdᵢ = δθ × dᵢ`: the directors stay orthonormal, as the Newton update keeps
+//! them), the nodal velocity perturbation `δv` (12 per body) and the input perturbation `δu`.
+//! The stage solves `r(z; qₙ, vₙ, u) = 0` for `z = (q_{n+1}, μ)` (the multiplier form,
+//! `newton`; the reduced iteration has the same root), so
+//!
+//! ```text
+//! J_z X = −(∂r/∂qₙ Q(qₙ) ξ + ∂r/∂vₙ δv + ∂r/∂u δu)      J_z: the Newton matrix at the root
+//! ∂r/∂vₙ δv = −h P̄ᵀ M δv                                 (joint rows: 0)
+//! ∂r/∂qₙ Q(qₙ) ξ = J_sw ξ − 2 P̄ᵀ M Q(qₙ) ξ
+//! ∂r/∂u δu = Σⱼ δuⱼ (r(u + s eⱼ) − r(u − s eⱼ)) / 2s     (r is affine in u; exact)
+//! ξ' = X (its body part),  δq_{n+1} = Q(q_{n+1}) ξ',  δv_{n+1} = (2/h)(δq_{n+1} − δqₙ) − δvₙ
+//! ```
+//!
+//! `J_sw` is the body block of the Newton matrix evaluated with the stage's ends swapped: the
+//! iterate at `qₙ`, the start at `q_{n+1}` with rate `−v_{n+1}` (so `a = Δq − h vₙ` and the node
+//! residual are unchanged), the turn angles swapped and every damper (joint and stop) negated.
+//! Each load of the step is a function of `q̄` (symmetric in the ends), a discrete gradient
+//! (symmetric in its ends) or a damper odd in the increment; swapped and negated, each is the
+//! same function of `(qₙ, q_{n+1})` as before, so its derivative in the iterate is its derivative
+//! in `qₙ`. Only the inertia `M (q − qₙ − h vₙ)` changes sign: hence `−2 P̄ᵀ M Q`.
+//! The multipliers of the root are refined first by one solve (the residual is linear in `μ`),
+//! since the reduced iteration does not carry them.
+//!
+//! Cost per stage: two factorisations of the Newton matrix, one of the swapped one's assembly,
+//! `2 nᵤ` residual evaluations and one back-substitution per column, each O(N) on a tree.
+//! Contacts are not covered (`tree_dynamics::supported` refuses them before a tangent exists).
+// index loops over coupled fixed-size arrays read closer to the formulas than iterator chains
+#![allow(clippy::needless_range_loop)]
+
+use super::error::StepError;
+use super::newton::{evaluate, resolve, solve, stage_rates, Held, Mode, Work};
+use crate::math::Vec3;
+use crate::mechanics::linalg::tree::NMAX;
+use crate::mechanics::model::constraint::{body_nodes, read3};
+use crate::mechanics::model::runtime::Model;
+
+/// Perturbation columns of a run's state (module docs), and their value at the start of the
+/// step in progress (a rejected or redone step starts again from there).
+#[derive(Clone, Debug)]
+pub struct Tangent {
+    /// Number of columns.
+    cols: usize,
+    /// Twist increments `(δφ, δθ)`, 6 per body, per column (column-major), m and rad.
+    xi: Vec<f64>,
+    /// Nodal velocity perturbations, 12 per body, per column, m/s and 1/s.
+    dv: Vec<f64>,
+    /// Input perturbations, one per model input, per column.
+    du: Vec<f64>,
+    /// `xi`, `dv` at the start of the step in progress.
+    start: (Vec<f64>, Vec<f64>),
+    /// The model with its stop dampers negated, when it has any (the swapped evaluation).
+    mirror: Option<Box<Model>>,
+}
+
+impl Tangent {
+    /// Columns `xi` (6 per body each), `dv` (12 per body each) and `du` (one per model input
+    /// each), column-major, for `model`.
+    ///
+    /// # Panics
+    /// When the lengths do not match `cols` columns of `model`.
+    #[must_use]
+    pub fn new(model: &Model, cols: usize, xi: Vec<f64>, dv: Vec<f64>, du: Vec<f64>) -> Self {
+        let nb = model.bodies.len();
+        assert_eq!(xi.len(), 6 * nb * cols, "tangent: xi length");
+        assert_eq!(dv.len(), 12 * nb * cols, "tangent: dv length");
+        assert_eq!(du.len(), model.inputs.len() * cols, "tangent: du length");
+        let damped_stops = model
+            .joints
+            .iter()
+            .any(|j| j.stops.is_some_and(|s| s.damping != 0.0));
+        let mirror = damped_stops.then(|| {
+            let mut m = model.clone();
+            for j in &mut m.joints {
+                if let Some(s) = &mut j.stops {
+                    s.damping = -s.damping;
+                }
+            }
+            Box::new(m)
+        });
+        Self {
+            cols,
+            start: (xi.clone(), dv.clone()),
+            xi,
+            dv,
+            du,
+            mirror,
+        }
+    }
+
+    /// Number of columns.
+    #[must_use]
+    pub fn cols(&self) -> usize {
+        self.cols
+    }
+
+    /// Column `c`'s twist increments (6 per body).
+    #[must_use]
+    pub fn xi(&self, c: usize) -> &[f64] {
+        let n = self.xi.len() / self.cols.max(1);
+        &self.xi[c * n..(c + 1) * n]
+    }
+
+    /// Column `c`'s nodal velocity perturbation (12 per body).
+    #[must_use]
+    pub fn dv(&self, c: usize) -> &[f64] {
+        let n = self.dv.len() / self.cols.max(1);
+        &self.dv[c * n..(c + 1) * n]
+    }
+
+    /// Back to the start of the step in progress.
+    pub(crate) fn rewind(&mut self) {
+        self.xi.copy_from_slice(&self.start.0);
+        self.dv.copy_from_slice(&self.start.1);
+    }
+
+    /// The step in progress is committed: its end is the next step's start.
+    pub(crate) fn accept(&mut self) {
+        self.start.0.copy_from_slice(&self.xi);
+        self.start.1.copy_from_slice(&self.dv);
+    }
+
+    /// Carries the columns through the stage of size `h` that converged in `ws` (start `ws.qn`,
+    /// `ws.vn`, end `ws.q`; called before the workspace moves to the end), module formulas.
+    ///
+    /// # Errors
+    /// [`StepError::Singular`] when the Newton matrix at the root is singular.
+    pub(crate) fn stage(
+        &mut self,
+        model: &Model,
+        ws: &Work,
+        held: &Held,
+        h: f64,
+    ) -> Result<(), StepError> {
+        let nb = model.bodies.len();
+        let nin = model.inputs.len();
+        // the Newton matrix at the root, with the root's multipliers
+        let mut wt = ws.clone();
+        evaluate(model, &mut wt, held, h, Mode::Full);
+        if !solve(model, &mut wt) {
+            return Err(StepError::Singular);
+        }
+        for (j, jt) in model.joints.iter().enumerate() {
+            for k in 0..jt.rows.len() {
+                wt.mu[jt.row0 + k] += mu_entry(model, &wt, j, k);
+            }
+        }
+        evaluate(model, &mut wt, held, h, Mode::Full);
+        if !solve(model, &mut wt) {
+            return Err(StepError::Singular);
+        }
+        // the Jacobian's terms besides the inertia, at the root and swapped (module docs)
+        let mut wz = ws.clone();
+        wz.mu.copy_from_slice(&wt.mu);
+        wz.inertia_in_jacobian = false;
+        evaluate(model, &mut wz, held, h, Mode::Full);
+        let mut sw = ws.clone();
+        sw.mu.copy_from_slice(&wt.mu);
+        sw.inertia_in_jacobian = false;
+        let two_over_h = 2.0 / h;
+        for i in 0..12 * nb {
+            let v1 = ws.vn[i] + ws.vlo[i] + wt.acc[i] * two_over_h;
+            sw.vn[i] = -v1;
+            sw.vlo[i] = 0.0;
+            sw.qn[i] = ws.q[i];
+            sw.q[i] = ws.qn[i];
+            sw.dq[i] = -ws.dq[i];
+        }
+        sw.ang.copy_from_slice(&ws.ang1);
+        sw.ang1.copy_from_slice(&ws.ang);
+        stage_rates(&mut sw, h);
+        let negated: Vec<f64> = held.damping.iter().map(|c| -c).collect();
+        let held_sw = Held {
+            inputs: held.inputs,
+            damping: &negated,
+            stiffness: held.stiffness,
+        };
+        let mirror = self.mirror.as_deref().unwrap_or(model);
+        evaluate(mirror, &mut sw, &held_sw, h, Mode::Full);
+        let ru = self.input_columns(model, ws, &wt.mu, held, h);
+        // per column: the right-hand side, one solve, the end's perturbation
+        let nr = model.nrows;
+        let (mut y, mut ys) = (vec![0.0; 6 * nb + nr], vec![0.0; 6 * nb + nr]);
+        for c in 0..self.cols {
+            let xi = &self.xi[c * 6 * nb..(c + 1) * 6 * nb];
+            let dv = &self.dv[c * 12 * nb..(c + 1) * 12 * nb];
+            let du = &self.du[c * nin..(c + 1) * nin];
+            matvec(model, &wz, xi, &mut y);
+            matvec(model, &sw, xi, &mut ys);
+            for b in 0..nb {
+                let br = &model.bodies[b];
+                let qbar = body_nodes(&ws.qbar, b);
+                let dbar = [qbar[1], qbar[2], qbar[3]];
+                let inc = body_nodes(&ws.dq, b);
+                let dth = read3(xi, 6 * b + 3);
+                // P̄ᵀ M ((Q_{n+1} − Qₙ) ξ − h δv): the inertia's share, free of cancellation
+                let vd: [Vec3; 3] = std::array::from_fn(|i| read3(dv, 12 * b + 3 + 3 * i));
+                let f = read3(dv, 12 * b) * (-h * br.mass);
+                let mut m = Vec3::zeros();
+                for i in 0..3 {
+                    let mut ei = Vec3::zeros();
+                    for j in 0..3 {
+                        ei += (dth.cross(&inc[j + 1]) - vd[j] * h) * br.e[(i, j)];
+                    }
+                    m += dbar[i].cross(&ei);
+                }
+                for k in 0..3 {
+                    y[6 * b + k] += ys[6 * b + k] + f[k];
+                    y[6 * b + 3 + k] += ys[6 * b + 3 + k] + m[k];
+                }
+            }
+            for (i, &d) in du.iter().enumerate() {
+                if d != 0.0 {
+                    for e in 0..6 * nb {
+                        y[e] += d * ru[i * 6 * nb + e];
+                    }
+                }
+            }
+            // J_z Y = −y for X = ξ + Y
+            set_rhs(model, &mut wt, &y);
+            resolve(model, &mut wt);
+            // δa = Q_{n+1} Y + (Q_{n+1} − Qₙ) ξ − h δv,  δv_{n+1} = δv + (2/h) δa
+            let dvc = &mut self.dv[c * 12 * nb..(c + 1) * 12 * nb];
+            let xic = &mut self.xi[c * 6 * nb..(c + 1) * 6 * nb];
+            for b in 0..nb {
+                let (n1, inc) = (body_nodes(&ws.q, b), body_nodes(&ws.dq, b));
+                let yb: [f64; 6] = std::array::from_fn(|k| rhs_entry(model, &wt, b, k));
+                let (yp, yt) = (
+                    Vec3::new(yb[0], yb[1], yb[2]),
+                    Vec3::new(yb[3], yb[4], yb[5]),
+                );
+                let dth = read3(xic, 6 * b + 3);
+                let da: [Vec3; 4] = [
+                    yp,
+                    yt.cross(&n1[1]) + dth.cross(&inc[1]),
+                    yt.cross(&n1[2]) + dth.cross(&inc[2]),
+                    yt.cross(&n1[3]) + dth.cross(&inc[3]),
+                ];
+                for k in 0..4 {
+                    for a in 0..3 {
+                        let o = 12 * b + 3 * k + a;
+                        let v = dvc[o];
+                        dvc[o] = v + two_over_h * (da[k][a] - h * v);
+                    }
+                }
+                for k in 0..6 {
+                    xic[6 * b + k] += yb[k];
+                }
+            }
+        }
+        Ok(())
+    }
+
+    /// The inputs' columns of `r` (6 per body each) at the root `ws` with multipliers `mu`:
+    /// central differences of the residual, exact as `r` is affine in `u` (module docs);
+    /// inputs no column moves are left 0.
+    fn input_columns(&self, model: &Model, ws: &Work, mu: &[f64], held: &Held, h: f64) -> Vec<f64> {
+        let nb = model.bodies.len();
+        let nin = model.inputs.len();
+        let mut ru = vec![0.0; 6 * nb * nin];
+        let mut inputs = held.inputs.to_vec();
+        for i in 0..nin {
+            let used = (0..self.cols).any(|c| self.du[c * nin + i] != 0.0);
+            let s = step_for(model, i, held.inputs[i]);
+            if !used || s == 0.0 {
+                continue;
+            }
+            let mut r = [vec![0.0; 6 * nb], vec![0.0; 6 * nb]];
+            for (side, sign) in [(0, 1.0), (1, -1.0)] {
+                inputs[i] = held.inputs[i] + sign * s;
+                let hi = Held {
+                    inputs: &inputs,
+                    damping: held.damping,
+                    stiffness: held.stiffness,
+                };
+                let mut wr = ws.clone();
+                wr.mu.copy_from_slice(mu);
+                evaluate(model, &mut wr, &hi, h, Mode::Residual);
+                for b in 0..nb {
+                    for k in 0..6 {
+                        // the right-hand side holds −r
+                        r[side][6 * b + k] = -rhs_entry(model, &wr, b, k);
+                    }
+                }
+            }
+            inputs[i] = held.inputs[i];
+            for e in 0..6 * nb {
+                ru[i * 6 * nb + e] = (r[0][e] - r[1][e]) / (2.0 * s);
+            }
+        }
+        ru
+    }
+}
+
+/// The half-width of the central difference of input `i` at `u`: 1 (the residual is affine
+/// in `u`, so any width is exact but for round-off), narrowed to stay inside an actuator's
+/// effort limit; 0 when the input is at or beyond its limit (the clamped force does not move).
+fn step_for(model: &Model, i: usize, u: f64) -> f64 {
+    let effort = model
+        .joints
+        .iter()
+        .find(|jt| {
+            jt.input
+                .is_some_and(|first| (first..first + jt.dofs.len()).contains(&i))
+                && jt.sph_axes.is_none()
+        })
+        .map_or(f64::INFINITY, |jt| jt.effort);
+    let room = effort - u.abs();
+    if room <= 0.0 {
+        0.0
+    } else {
+        (0.5 * room).min(1.0)
+    }
+}
+
+/// Entry `k` (< 6) of body `b`'s right-hand side (or solution) in the workspace's system.
+fn rhs_entry(model: &Model, ws: &Work, b: usize, k: usize) -> f64 {
+    if model.dense {
+        ws.drhs[6 * b + k]
+    } else {
+        ws.blocks[b].r[k]
+    }
+}
+
+/// The solution entry of multiplier `k` of joint `j` (after a solve).
+fn mu_entry(model: &Model, ws: &Work, j: usize, k: usize) -> f64 {
+    let jt = &model.joints[j];
+    if model.dense {
+        ws.drhs[6 * model.bodies.len() + jt.row0 + k]
+    } else if let Some(l) = ws.border.lrow[j] {
+        ws.border.rc[l + k]
+    } else {
+        ws.blocks[jt.child].r[6 + k]
+    }
+}
+
+/// Sets the right-hand side to `−y` (the body rows, then the joint rows in `row0` order).
+fn set_rhs(model: &Model, ws: &mut Work, y: &[f64]) {
+    let nb = model.bodies.len();
+    if model.dense {
+        for (r, v) in ws.drhs.iter_mut().zip(y) {
+            *r = -v;
+        }
+        return;
+    }
+    for b in 0..nb {
+        for k in 0..6 {
+            ws.blocks[b].r[k] = -y[6 * b + k];
+        }
+    }
+    for jt in &model.joints {
+        for k in 0..jt.rows.len() {
+            ws.blocks[jt.child].r[6 + k] = -y[6 * nb + jt.row0 + k];
+        }
+    }
+}
+
+/// `y = J x` over the body columns of the assembled (not factored) Newton matrix of `ws`, every
+/// row (the body rows, then the joint rows in `row0` order): the diagonal blocks `D`, the
+/// parent couplings `U` (the child's rows) and `L` (the parent's body rows). Trees only.
+fn matvec(model: &Model, ws: &Work, x: &[f64], y: &mut [f64]) {
+    let nb = model.bodies.len();
+    y.fill(0.0);
+    if model.dense {
+        let nd = ws.drhs.len();
+        for r in 0..nd {
+            y[r] = (0..6 * nb).map(|s| ws.dense[r * nd + s] * x[s]).sum();
+        }
+        return;
+    }
+    // the row of entry r of block b in y
+    let row = |b: usize, r: usize| -> usize {
+        if r < 6 {
+            6 * b + r
+        } else {
+            let j = model.tree_joint[b].expect("a block's rows belong to its tree joint");
+            6 * nb + model.joints[j].row0 + r - 6
+        }
+    };
+    for b in 0..nb {
+        let blk = &ws.blocks[b];
+        for r in 0..blk.n {
+            let mut acc = 0.0;
+            for s in 0..6 {
+                acc += blk.d[r * NMAX + s] * x[6 * b + s];
+            }
+            if let Some(p) = model.parent[b] {
+                for s in 0..6 {
+                    acc += blk.u[r * 6 + s] * x[6 * p + s];
+                }
+            }
+            y[row(b, r)] += acc;
+        }
+        if let Some(p) = model.parent[b] {
+            for r in 0..6 {
+                let mut acc = 0.0;
+                for s in 0..6 {
+                    acc += blk.l[r * NMAX + s] * x[6 * b + s];
+                }
+                y[6 * p + r] += acc;
+            }
+        }
+    }
+}
