@@ -3,6 +3,10 @@
 //! (N = 10, 100, 1000: 2N states, N inputs are none, so B is empty; the cost is that of A).
 //! Expected growth: 2N dual passes of O(N) and one O(N³) LU: O(N²) + O(N³).
 //!
+//! `step_map/*`: the exact discrete-time Ad, Bd of one communication step of 1 ms (one sub-step
+//! at the default max_step, `Simulation::step_map`): per stage three Newton-matrix assemblies,
+//! two factorisations, and one O(N) back-substitution per column (2n + inputs): O(N²).
+//!
 //! Run: `cargo bench --bench linearize -- --warm-up-time 1 --measurement-time 5`.
 use criterion::{criterion_group, criterion_main, BenchmarkId, Criterion};
 use triad::mechanics::{Model, ModelDef, Operating, SolverSettings, State};
@@ -36,6 +40,16 @@ fn bench(c: &mut Criterion) {
         }
         g.bench_with_input(BenchmarkId::new("chain", n), &op, |b, op| {
             b.iter(|| op.linearize(&[]).expect("A, B"));
+        });
+    }
+    g.finish();
+    let mut g = c.benchmark_group("step_map");
+    let robot = (def, "robot_arm".to_string());
+    let chains = [10, 100].map(|n| (common::chain(n), format!("chain{n}")));
+    for (def, name) in std::iter::once(robot).chain(chains) {
+        let sim = triad::sim::Simulation::new(&def, SolverSettings::default(), 0.0).expect("sim");
+        g.bench_function(name, |b| {
+            b.iter(|| sim.clone().step_map(1e-3).expect("Ad, Bd"));
         });
     }
     g.finish();

@@ -1,18 +1,21 @@
 #!/usr/bin/env python3
-"""Balance the cart-pole (examples/specs/cart_pole.toml) with an LQR designed on triad's exact
-linear model, and run it in closed loop on the cart-pole FMU under fmpy.
+"""Balance the cart-pole (examples/specs/cart_pole.toml) with a discrete LQR designed on triad's
+exact discrete-time linear model of the FMU's own communication step, and run it in closed loop
+on the cart-pole FMU under fmpy.
 
     python examples/lqr_balance.py [--triad target/release/triad] [--angle 0.15] [--stop 5] [--step 0.01]
 
-1. `triad linearize examples/specs/cart_pole.toml -o -` gives A, B (JSON on standard output) at
-   the spec's initial state, the upright equilibrium: x = (cart q, pole q, cart qd, pole qd),
-   u = joint.cart.f;
-2. the continuous LQR gain K = R^-1 B^T P, P from scipy.linalg.solve_continuous_are;
+1. `triad linearize examples/specs/cart_pole.toml --step 0.01 -o -` gives Ad, Bd (JSON on
+   standard output): the exact derivatives of one communication step of 0.01 s from the spec's
+   initial state, the upright equilibrium, with the inputs held over the step as the FMU holds
+   them; x = (cart q, pole q, cart qd, pole qd), u = joint.cart.f;
+2. the discrete LQR gain K = (R + Bd^T P Bd)^-1 Bd^T P Ad, P from
+   scipy.linalg.solve_discrete_are: the gain of exactly the sampled loop that runs;
 3. `triad build` makes the FMU; fmpy's FMU2Slave runs it from the pole `--angle` rad off upright
    (the start value joint.pole.q0), the force u = u0 - K (x - x0) computed from the FMU's outputs
    once per communication step and held over the step.
 
-Prints the closed-loop poles, the gain, the final pole angle and cart position; exits non-zero if
+Prints the closed-loop eigenvalues (of Ad - Bd K: inside the unit circle), the gain, the final pole angle and cart position; exits non-zero if
 the pole is not back upright (|angle| >= 0.01 rad) at the end.
 """
 import argparse
@@ -35,18 +38,21 @@ R = np.array([[0.1]])  # input weight, 1/N^2
 UPRIGHT = 0.01  # rad: |pole angle| at the end below this counts as balanced
 
 
-def linear_model(triad, spec=SPEC):
-    """triad's linear model of `spec` at its initial state, as a dict of numpy arrays and names."""
-    out = subprocess.run([triad, "linearize", str(spec), "-o", "-"], check=True, capture_output=True, text=True)
+def linear_model(triad, spec=SPEC, step=0.01):
+    """triad's linear model of `spec` at its initial state (continuous A, B, C, D and the
+    discrete Ad, Bd of one communication `step`), as a dict of numpy arrays and names."""
+    cmd = [triad, "linearize", str(spec), "--step", str(step), "-o", "-"]
+    out = subprocess.run(cmd, check=True, capture_output=True, text=True)
     d = json.loads(out.stdout)
     return {k: (np.array(v, dtype=float) if k not in ("x_names", "u_names", "y_names") else v) for k, v in d.items()}
 
 
-def lqr(a, b, q=Q, r=R):
-    """The continuous-time LQR gain K (u = -K x) and the closed-loop eigenvalues."""
-    p = scipy.linalg.solve_continuous_are(a, b, q, r)
-    k = np.linalg.solve(r, b.T @ p)
-    return k, np.linalg.eigvals(a - b @ k)
+def lqr(ad, bd, q=Q, r=R):
+    """The discrete-time LQR gain K (u = -K x, held over each step) and the closed-loop
+    eigenvalues of Ad - Bd K."""
+    p = scipy.linalg.solve_discrete_are(ad, bd, q, r)
+    k = np.linalg.solve(r + bd.T @ p @ bd, bd.T @ p @ ad)
+    return k, np.linalg.eigvals(ad - bd @ k)
 
 
 def balance(fmu_path, lin, k, angle=0.15, stop=5.0, step=0.01):
@@ -93,12 +99,12 @@ def main():
     p.add_argument("--step", type=float, default=0.01, help="communication step, s")
     a = p.parse_args()
 
-    lin = linear_model(a.triad)
+    lin = linear_model(a.triad, step=a.step)
     assert lin["x_names"] == ["joint.cart.q", "joint.pole.q", "joint.cart.qd", "joint.pole.qd"], lin["x_names"]
     assert lin["u_names"] == ["joint.cart.f"], lin["u_names"]
-    k, poles = lqr(lin["A"], lin["B"])
-    print("open-loop eigenvalues:  " + ", ".join(f"{e:.4g}" for e in np.linalg.eigvals(lin["A"])))
-    print("closed-loop eigenvalues: " + ", ".join(f"{e:.4g}" for e in poles))
+    k, poles = lqr(lin["Ad"], lin["Bd"])
+    print("open-loop eigenvalues of Ad:  " + ", ".join(f"{e:.4g}" for e in np.linalg.eigvals(lin["Ad"])))
+    print("closed-loop eigenvalues:      " + ", ".join(f"{e:.4g}" for e in poles))
     print("K = " + np.array2string(k.ravel(), precision=4))
     with tempfile.TemporaryDirectory() as tmp:
         fmu = Path(tmp) / "cart_pole.fmu"

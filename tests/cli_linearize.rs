@@ -122,8 +122,8 @@ fn bad_requests_are_refused_and_write_nothing() {
             "closes a kinematic loop",
         ),
         (
-            &["linearize", "pendulum", "--step", "0.01", "-o", "x.json"],
-            "not available yet",
+            &["linearize", "pendulum", "--step", "-0.01", "-o", "x.json"],
+            "must be a positive number",
         ),
         (
             &["linearize", "pendulum", "-o", "x.txt"],

@@ -1,6 +1,7 @@
 //! `triad linearize`: the exact continuous-time linear model `A, B, C, D` of MODEL at an
 //! operating point (its initial state with `--set`, or a result's row at `--time`), inputs held
-//! at `--u` values, written as `.json`, `.npz` or `.mat` (`matrix_file`).
+//! at `--u` values, and the exact discrete-time `Ad, Bd` of one communication step `--step H`
+//! from it (`Simulation::step_map`), written as `.json`, `.npz` or `.mat` (`matrix_file`).
 
 use std::path::PathBuf;
 
@@ -27,8 +28,8 @@ pub struct LinearizeArgs {
     /// `-` (the default) prints JSON.
     #[arg(short, long, value_name = "OUT.npz|OUT.mat|OUT.json|-")]
     pub output: Option<PathBuf>,
-    /// The discrete-time Ad, Bd of one communication step H (not available yet: the command
-    /// says so and writes nothing).
+    /// The communication step H of the discrete-time Ad, Bd (default: the spec's experiment
+    /// step), taken with the model's own solver settings (max_step, order, error control).
     #[arg(long, value_name = "H")]
     pub step: Option<f64>,
     /// Take the operating point from this result CSV (as `simulate` or fmpy write it: the
@@ -179,13 +180,12 @@ fn default_output(name: &str, acc: Accessor, free: &[String]) -> bool {
 /// Runs the command.
 #[allow(clippy::too_many_lines)]
 pub fn run(args: &LinearizeArgs) -> Result<(), CliError> {
-    if args.step.is_some() {
-        return Err(
-            "--step: the discrete-time Ad, Bd of the step are not available yet; this \
-                    version writes the continuous-time A, B, C, D only"
-                .to_string()
-                .into(),
-        );
+    if let Some(h) = args.step {
+        if !(h.is_finite() && h > 0.0) {
+            return Err(
+                format!("--step {h}: the step must be a positive number of seconds").into(),
+            );
+        }
     }
     if args.coordinates.is_some() {
         return Err(
@@ -200,6 +200,7 @@ pub fn run(args: &LinearizeArgs) -> Result<(), CliError> {
     let table = VariableTable::new(&def, &settings).with_labels(&spec.labels());
     overrides::apply(&args.set, &table, &mut def, &mut settings)?;
     let start = spec.experiment.start;
+    let h = args.step.unwrap_or(spec.experiment.step);
     let mut sim =
         Simulation::new(&def, settings, start).map_err(|e| format!("{}: {e}", args.model))?;
     hold_inputs(&args.u, &table, sim.state_mut().inputs_mut())?;
@@ -270,6 +271,18 @@ pub fn run(args: &LinearizeArgs) -> Result<(), CliError> {
             .map(|(r, c)| m[(r, c)])
             .collect()
     };
+    // the discrete-time model: one communication step from the operating point, as a run
+    // started there takes it
+    let x_op: Vec<f64> = op.q.iter().chain(&op.nu).copied().collect();
+    let mut from_op = Simulation::new(&op.initial_def(&def, &x_op), settings, t0)
+        .map_err(|e| format!("{}: {e}", args.model))?;
+    from_op.state_mut().inputs_mut().copy_from_slice(&op.u);
+    let map = from_op.step_map(h).map_err(|e| {
+        format!(
+            "{}: the step of {h} s from the operating point: {e}",
+            args.model
+        )
+    })?;
     let nu = u_cols.len();
     let ny = ys.len();
     let x0: Vec<f64> = op.q.iter().chain(&op.nu).copied().collect();
@@ -284,6 +297,9 @@ pub fn run(args: &LinearizeArgs) -> Result<(), CliError> {
         ("B", Value::Matrix(nx, nu, pick(&lin.b, nx))),
         ("C", Value::Matrix(ny, nx, row_major(&lin.c))),
         ("D", Value::Matrix(ny, nu, pick(&lin.d, ny))),
+        ("Ad", Value::Matrix(nx, nx, row_major(&map.ad))),
+        ("Bd", Value::Matrix(nx, nu, pick(&map.bd, nx))),
+        ("h", Value::Scalar(h)),
         ("x_names", Value::Names(x_names)),
         (
             "u_names",

@@ -15,7 +15,7 @@ derivatives of the forward dynamics on real robots, and what it refuses it refus
   continuous joint's (cos, sin) is its angle, and Pinocchio's tangent is d(angle)): no offset, no
   sign. A floating base (solo12) is compared through the change of coordinates written out in
   `_floating_reference`.
-- Errors: a closed loop, --step, an unknown output extension and an unknown input are refused
+- Errors: a closed loop, a step of 0 s, an unknown output extension and an unknown input are refused
   with a message naming the problem.
 """
 import json
@@ -39,7 +39,7 @@ FIXED = {
     "kinova": "kinova_description/robots/kinova.urdf",  # continuous joints (Pinocchio nq = 2)
 }
 FLOATING = {"solo12": "solo_description/robots/solo12.urdf"}
-KEYS = ("A", "B", "C", "D", "x0", "u0", "y0", "xdot0")
+KEYS = ("A", "B", "C", "D", "Ad", "Bd", "x0", "u0", "y0", "xdot0")
 NAMES = ("x_names", "u_names", "y_names")
 
 
@@ -306,7 +306,7 @@ def test_floating_base_against_pinocchio(triad_bin, tmp_path, name, record_prope
     "args, words",
     [
         (["four_bar"], ["loop"]),
-        (["pendulum", "--step", "0.01"], ["--step", "not available"]),
+        (["pendulum", "--step", "0", "-o", "{tmp}/x.txt"], ["--step", "positive"]),
         (["pendulum", "-o", "{tmp}/x.txt"], [".json", ".npz", ".mat"]),
         (["pendulum", "--u", "nosuch=1"], ["nosuch", "no such input"]),
     ],
