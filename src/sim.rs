@@ -30,11 +30,24 @@
 //! - a step whose outputs are not all finite is rolled back ([`Failure::NonFinite`]).
 
 use crate::mechanics::{
-    above_floor, begin_step_map, controlled_step, crossing_within, finish_step_map, step_state,
-    Model, ModelDef, ModelError, Operating, SolverSettings, State, StepError, StepMap, Verdict,
-    LANDED,
+    above_floor, begin_step_map, controlled_step, finish_step_map, first_event, penetration,
+    step_state, Event, Model, ModelDef, ModelError, Operating, SolverSettings, State, StepError,
+    StepMap, Verdict,
 };
 use thiserror::Error;
+
+/// The width of the time bracket an early return's event search ends at, s (module docs of
+/// [`Simulation::advance_early`]).
+pub const EVENT_TIME_TOL: f64 = 1e-13;
+
+/// Events within this fraction of a step's start are not early returns (the step starts on
+/// them: a return landed past its event, within [`EVENT_TIME_TOL`]); every later crossing is,
+/// however close to the start.
+const EVENT_START: f64 = 1e-9;
+
+/// Steps an early return's event search takes at most (the bracket shrinks superlinearly:
+/// 10–20 are typical).
+const EVENT_ITERATIONS: usize = 60;
 
 /// A communication step shorter than this fraction of `max_step` is carried into the next one
 /// instead of being integrated on its own (1 ns at the default `max_step` of 1 ms).
@@ -347,11 +360,12 @@ impl Simulation {
     }
 
     /// [`Simulation::advance`] that returns early, at the time a joint reaches or leaves a
-    /// stop or a contact touches or leaves (`mechanics::crossing_within`; FMI 3's early return):
+    /// stop or a contact touches or leaves (`mechanics::first_event`; FMI 3's early return):
     /// `Some(t)` is that time, `None` a step that landed on `t + h` without an event. A sub-step
-    /// that crosses an event is retaken to end on it (secant, up to six times); one that ends
-    /// within `LANDED` of it counts as ending on it, and an event within `LANDED` of a
-    /// sub-step's start (the one returned at before) is not reported again.
+    /// (with error control: an accepted step) that crosses an event is retaken to end on it,
+    /// the size found to [`EVENT_TIME_TOL`] (`land_on_event`), just past the crossing; an event
+    /// within `EVENT_START` (1e-9) of a sub-step's fraction from its start is not reported (the
+    /// one returned at before).
     ///
     /// # Errors
     /// As [`Simulation::advance`].
@@ -361,37 +375,84 @@ impl Simulation {
 
     /// After a sub-step of size `h` from `self.sub`: if it crossed an event, the sub-step
     /// retaken to end on it, and its size; `None` without an event.
+    ///
+    /// The size `τ` is the root of the event's signed penetration `x(τ)` at the end of a step
+    /// of size `τ` from `self.sub`, bracketed between the start (`x₀`) and `h` and found by
+    /// the Illinois variant of regula falsi (superlinear; each evaluation one step) to a
+    /// bracket of [`EVENT_TIME_TOL`] s or `x(τ) = 0`; the step ends on the bracket's side past
+    /// the crossing. An earlier crossing of another limit or contact found on the way takes
+    /// over the search.
     fn land_on_event(&mut self, h: f64) -> Result<Option<f64>, StepError> {
-        const RETAKES: usize = 6;
         let hi = 1.0 + 1e-12;
-        let cross = |sim: &Self| {
-            crossing_within(
-                &sim.model,
-                &sim.sub.q,
-                &sim.sub.angles,
-                &sim.state.q,
-                &sim.state.angles,
-                hi,
-            )
-        };
-        let Some(mut theta) = cross(self) else {
+        let Some((_, mut ev)) = first_event(
+            &self.model,
+            &self.sub.q,
+            &self.sub.angles,
+            &self.state.q,
+            &self.state.angles,
+            EVENT_START,
+            hi,
+        ) else {
             return Ok(None);
         };
-        let mut h = h;
-        for _ in 0..RETAKES {
-            if theta >= 1.0 - LANDED {
+        let pen = |sim: &Self, ev: Event, of_sub: bool| {
+            let s = if of_sub { &sim.sub } else { &sim.state };
+            penetration(&sim.model, ev, &s.q, &s.angles)
+        };
+        let (mut a, mut fa) = (0.0, pen(self, ev, true));
+        let (mut b, mut fb) = (h, pen(self, ev, false));
+        // which end the last retained update kept twice (Illinois)
+        let mut side = 0i8;
+        let mut at = h;
+        for _ in 0..EVENT_ITERATIONS {
+            if b - a <= EVENT_TIME_TOL || fb == 0.0 {
                 break;
             }
-            h *= theta;
+            let mut tau = (a * fb - b * fa) / (fb - fa);
+            if !(tau > a && tau < b) {
+                tau = 0.5 * (a + b);
+            }
             self.state.copy_values_from(&self.sub);
-            step_state(&self.model, &mut self.state, h)?;
-            match cross(self) {
-                Some(t) => theta = t,
-                // the retake ends just short of the event (the secant's error): it is there
-                None => break,
+            step_state(&self.model, &mut self.state, tau)?;
+            at = tau;
+            // another event crossed earlier within the retake takes over
+            if let Some((theta, other)) = first_event(
+                &self.model,
+                &self.sub.q,
+                &self.sub.angles,
+                &self.state.q,
+                &self.state.angles,
+                EVENT_START,
+                1.0,
+            ) {
+                if other != ev && theta < 1.0 {
+                    ev = other;
+                    (a, fa) = (0.0, pen(self, ev, true));
+                    (b, fb) = (tau, pen(self, ev, false));
+                    side = 0;
+                    continue;
+                }
+            }
+            let ft = pen(self, ev, false);
+            if (ft > 0.0) == (fb > 0.0) {
+                (b, fb) = (tau, ft);
+                if side == 1 {
+                    fa *= 0.5;
+                }
+                side = 1;
+            } else {
+                (a, fa) = (tau, ft);
+                if side == -1 {
+                    fb *= 0.5;
+                }
+                side = -1;
             }
         }
-        Ok(Some(h))
+        if at != b {
+            self.state.copy_values_from(&self.sub);
+            step_state(&self.model, &mut self.state, b)?;
+        }
+        Ok(Some(b))
     }
 
     fn advance_state_with(
@@ -549,16 +610,32 @@ impl Simulation {
                     done += h;
                     remaining = if last { 0.0 } else { remaining - h };
                     let event = early
-                        && crossing_within(
+                        && first_event(
                             &self.model,
                             &self.sub.q,
                             &self.sub.angles,
                             &self.state.q,
                             &self.state.angles,
+                            EVENT_START,
                             1.0 + 1e-12,
                         )
                         .is_some();
                     if event && remaining > 0.0 {
+                        // the accepted step retaken to end on the event (as a fixed step)
+                        match self.land_on_event(h) {
+                            Ok(Some(tau)) => {
+                                done += tau - h;
+                                self.state.ctrl.record(&self.sub.q, tau);
+                            }
+                            Ok(None) => {}
+                            Err(error) => {
+                                self.state.copy_values_from(&self.saved);
+                                return Err(AdvanceError {
+                                    error: error.into(),
+                                    last_good_time: t0,
+                                });
+                            }
+                        }
                         let reached = (t0 - self.saved.lag()) + done;
                         self.state.set_lag(0.0);
                         self.state.set_time(reached);

@@ -41,7 +41,7 @@ pub use model::tree_dynamics::{supported, Coord, TreeDynamics, Unsupported};
 pub use model::{body, constraint, contact, def, joint, kinematics, loops, ranges};
 pub use run::advance::{controlled_step, step, step_state};
 pub use run::control::{above_floor, Control, Verdict};
-pub use run::events::{crossing_within, LANDED};
+pub use run::events::{crossing_within, first_event, penetration, Event, LANDED};
 pub use run::operating::Operating;
 pub use run::outputs::{BodyOutput, JointOutput, Outputs};
 pub use run::state::State;

@@ -69,53 +69,108 @@ pub fn crossing_within(
     ang1: &[f64],
     hi: f64,
 ) -> Option<f64> {
-    let mut first: Option<f64> = None;
-    for jt in &model.joints {
-        let Some(st) = jt.stops else {
-            continue;
-        };
-        let (Some(t0), Some(t1)) = (coordinate(jt, q0, ang0), coordinate(jt, q1, ang1)) else {
-            continue;
-        };
-        let limits = [
-            st.upper
-                .is_finite()
-                .then_some((t0 - st.upper, t1 - st.upper)),
-            st.lower
-                .is_finite()
-                .then_some((st.lower - t0, st.lower - t1)),
-        ];
-        for (x0, x1) in limits.into_iter().flatten() {
-            if let Some(theta) = crossing(x0, x1) {
-                if theta > LANDED && theta < hi && first.is_none_or(|f| theta < f) {
-                    first = Some(theta);
-                }
+    first_event(model, q0, ang0, q1, ang1, LANDED, hi).map(|(theta, _)| theta)
+}
+
+/// One event of a step: a joint coordinate reaching or leaving a limit, or a contact point or
+/// feature touching or leaving.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Event {
+    /// Joint `joint`'s upper (`true`) or lower limit.
+    Stop {
+        /// The joint.
+        joint: usize,
+        /// The upper limit (else the lower).
+        upper: bool,
+    },
+    /// Ground contact point `k`.
+    Ground(usize),
+    /// Body–body contact feature `k`.
+    Feature(usize),
+}
+
+/// The signed penetration of `ev` at the coordinates `q` and unwrapped angles `ang` (module
+/// docs: `t − upper`, `lower − t`, `−gap`; positive in contact), rad or m.
+#[must_use]
+pub fn penetration(model: &Model, ev: Event, q: &[f64], ang: &[f64]) -> f64 {
+    match ev {
+        Event::Stop { joint, upper } => {
+            let jt = &model.joints[joint];
+            let (Some(st), Some(t)) = (jt.stops, coordinate(jt, q, ang)) else {
+                return f64::NAN;
+            };
+            if upper {
+                t - st.upper
+            } else {
+                st.lower - t
             }
         }
+        Event::Ground(k) => {
+            let Some(g) = &model.contact.ground else {
+                return f64::NAN;
+            };
+            let p = &g.points[k];
+            let n = body_nodes(q, p.body);
+            let x = n[0] + n[1] * p.x.x + n[2] * p.x.y + n[3] * p.x.z;
+            -(g.normal.dot(&x) - g.height - p.radius)
+        }
+        Event::Feature(k) => {
+            let f = &model.contact.features[k];
+            let (qa, qb) = pair_nodes(q, f);
+            -f.gap(&f.invariants(&qa, &qb))
+        }
     }
-    let mut consider = |x0: f64, x1: f64| {
+}
+
+/// The earliest event crossed at a fraction `θ ∈ (lo, hi)` of the step from `(q0, ang0)`
+/// to `(q1, ang1)`, with that fraction (`crossing_within` names only the fraction, with
+/// `lo = LANDED`).
+#[must_use]
+pub fn first_event(
+    model: &Model,
+    q0: &[f64],
+    ang0: &[f64],
+    q1: &[f64],
+    ang1: &[f64],
+    lo: f64,
+    hi: f64,
+) -> Option<(f64, Event)> {
+    let mut first: Option<(f64, Event)> = None;
+    let mut consider = |ev: Event| {
+        let (x0, x1) = (
+            penetration(model, ev, q0, ang0),
+            penetration(model, ev, q1, ang1),
+        );
         if let Some(theta) = crossing(x0, x1) {
-            if theta > LANDED && theta < hi && first.is_none_or(|f| theta < f) {
-                first = Some(theta);
+            if theta > lo && theta < hi && first.is_none_or(|(f, _)| theta < f) {
+                first = Some((theta, ev));
             }
         }
     };
-    if let Some(g) = &model.contact.ground {
-        for p in &g.points {
-            let gap = |q: &[f64]| {
-                let n = body_nodes(q, p.body);
-                let x = n[0] + n[1] * p.x.x + n[2] * p.x.y + n[3] * p.x.z;
-                g.normal.dot(&x) - g.height - p.radius
-            };
-            consider(-gap(q0), -gap(q1));
+    for (j, jt) in model.joints.iter().enumerate() {
+        let Some(st) = jt.stops else {
+            continue;
+        };
+        if st.upper.is_finite() {
+            consider(Event::Stop {
+                joint: j,
+                upper: true,
+            });
+        }
+        if st.lower.is_finite() {
+            consider(Event::Stop {
+                joint: j,
+                upper: false,
+            });
         }
     }
-    for f in &model.contact.features {
-        let gap = |q: &[f64]| {
-            let (qa, qb) = pair_nodes(q, f);
-            f.gap(&f.invariants(&qa, &qb))
-        };
-        consider(-gap(q0), -gap(q1));
+    if let Some(g) = &model.contact.ground {
+        for k in 0..g.points.len() {
+            consider(Event::Ground(k));
+        }
+    }
+    for k in 0..model.contact.features.len() {
+        consider(Event::Feature(k));
     }
     first
 }
