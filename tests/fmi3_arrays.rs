@@ -111,7 +111,7 @@ fn an_array_parameter_is_set_before_initialisation() {
     assert_eq!(f.set_f64(&[out.vr], &[0.0; 9]), fmi3Error);
     // in Step Mode a fixed parameter is refused, nothing changed
     assert_eq!(
-        unsafe { triad::ffi::fmi3::lifecycle::fmi3ExitInitializationMode(f.c) },
+        unsafe { fmu_support::api3::fmi3ExitInitializationMode(f.c) },
         fmi3OK
     );
     assert_eq!(f.set_f64(&[g.vr], &[0.0, 0.0, -1.0]), fmi3Error);

@@ -13,10 +13,8 @@ mod fmu_support;
 
 use fmu_support::fmi3::{instantiate3, shipped, Fmu3};
 use fmu_support::*;
-use triad::ffi::fmi3::cosim::fmi3DoStep;
-use triad::ffi::fmi3::getset::*;
-use triad::ffi::fmi3::lifecycle::*;
-use triad::ffi::fmi3::state::*;
+// the FMI 3 functions linked, or loaded from the runtime (TRIAD_DYNAMIC_TESTS, fmu_support::api3)
+use fmu_support::api3::*;
 use triad::ffi::fmi3::types::*;
 use triad::variables::fmi3::Table3;
 
@@ -50,6 +48,12 @@ fn observe(f: &Fmu3, vrs: &[u32], n: usize) -> (i32, Vec<u64>, i32, Vec<u8>) {
 }
 
 fn fuzz(m: &TestModel, name: &str, seed: u64) {
+    if std::env::var_os("TRIAD_DYNAMIC_TESTS").is_some() {
+        assert!(
+            fmu_support::api3::dynamic(),
+            "TRIAD_DYNAMIC_TESTS is set, yet the runtime was not loaded"
+        );
+    }
     let t3 = Table3::new(&m.table);
     let path = m.resources().to_string_lossy().into_owned();
     let fmus: Vec<Fmu3> = [false, true]

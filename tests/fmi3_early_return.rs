@@ -5,9 +5,9 @@
 
 mod fmu_support;
 
+use fmu_support::api3::{fmi3DoStep, fmi3ExitInitializationMode};
 use fmu_support::fmi3::{instantiate3, Fmu3};
 use fmu_support::*;
-use triad::ffi::fmi3::cosim::fmi3DoStep;
 use triad::ffi::fmi3::types::*;
 use triad::variables::fmi3::Table3;
 
@@ -21,10 +21,7 @@ fn early_instance(m: &TestModel) -> Fmu3 {
         t3: Table3::new(&m.table),
     };
     assert_eq!(f.enter_init(0.0), fmi3OK);
-    assert_eq!(
-        unsafe { triad::ffi::fmi3::lifecycle::fmi3ExitInitializationMode(f.c) },
-        fmi3OK
-    );
+    assert_eq!(unsafe { fmi3ExitInitializationMode(f.c) }, fmi3OK);
     f
 }
 

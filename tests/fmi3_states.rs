@@ -4,9 +4,9 @@
 
 mod fmu_support;
 
+use fmu_support::api3::*;
 use fmu_support::fmi3::*;
 use fmu_support::*;
-use triad::ffi::fmi3::state::*;
 use triad::ffi::fmi3::types::*;
 use triad::variables::Causality;
 
@@ -137,7 +137,7 @@ fn a_state_moves_between_live_instances_fmi2_and_fmi3() {
     // and into an FMI 2 instance of the same model: the same continuation
     let f2 = Fmu::initialised(&m);
     assert_eq!(
-        unsafe { triad::ffi::state::fmi2SetFMUstate(f2.c, st) },
+        unsafe { fmu_support::api::fmi2SetFMUstate(f2.c, st) },
         triad::ffi::types::fmi2OK
     );
     let ins2 = m.vrs(Causality::Input);

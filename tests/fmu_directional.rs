@@ -8,9 +8,9 @@
 mod common;
 mod fmu_support;
 
+use fmu_support::api3::{fmi3GetAdjointDerivative, fmi3GetDirectionalDerivative};
 use fmu_support::fmi3::{shipped, Fmu3};
 use fmu_support::*;
-use triad::ffi::fmi3::getset::{fmi3GetAdjointDerivative, fmi3GetDirectionalDerivative};
 use triad::ffi::fmi3::types::{fmi3Error, fmi3OK};
 use triad::ffi::getset::fmi2GetDirectionalDerivative;
 use triad::ffi::types::*;

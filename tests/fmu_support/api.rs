@@ -11,7 +11,6 @@
 )]
 
 use std::ffi::c_char;
-use std::sync::OnceLock;
 use triad::ffi::types::*;
 
 /// An array of value references.
@@ -22,50 +21,6 @@ mod linked {
     pub use triad::ffi::cosim::*;
     pub use triad::ffi::getset::*;
     pub use triad::ffi::state::*;
-}
-
-/// Declares each FMI function once (`fn name(argument: type, …) -> return;`) and generates
-/// from that list the table of the loaded library's functions, its loading, and one forwarder
-/// per function that calls the loaded function or the linked export.
-macro_rules! fmi_api {
-    ($(fn $name:ident($($arg:ident: $ty:ty),*) -> $ret:ty;)*) => {
-        /// The loaded library's functions.
-        struct Table {
-            _lib: libloading::Library,
-            $($name: unsafe extern "C" fn($($ty),*) -> $ret,)*
-        }
-
-        impl Table {
-            /// Every FMI function of `lib`.
-            ///
-            /// # Safety
-            /// `lib` is a triad runtime: every symbol has exactly the standard's type (checked in
-            /// ffi/mod.rs).
-            unsafe fn load(lib: libloading::Library) -> Table {
-                // SAFETY (test): the caller's promise.
-                unsafe {
-                    Table {
-                        $($name: *lib
-                            .get(concat!(stringify!($name), "\0").as_bytes())
-                            .expect(concat!(stringify!($name), " exported")),)*
-                        _lib: lib,
-                    }
-                }
-            }
-        }
-
-        $(
-            #[doc = concat!("`", stringify!($name), "`, linked or loaded (module docs).")]
-            pub unsafe fn $name($($arg: $ty),*) -> $ret {
-                match table() {
-                    // SAFETY (test): the caller's FMI contract, forwarded.
-                    Some(t) => unsafe { (t.$name)($($arg),*) },
-                    // SAFETY (test): as above.
-                    None => unsafe { linked::$name($($arg),*) },
-                }
-            }
-        )*
-    };
 }
 
 fmi_api! {
@@ -103,26 +58,4 @@ fmi_api! {
     fn fmi2GetIntegerStatus(a0: fmi2Component, a1: fmi2StatusKind, a2: *mut fmi2Integer) -> fmi2Status;
     fn fmi2GetBooleanStatus(a0: fmi2Component, a1: fmi2StatusKind, a2: *mut fmi2Boolean) -> fmi2Status;
     fn fmi2GetStringStatus(a0: fmi2Component, a1: fmi2StatusKind, a2: *mut fmi2String) -> fmi2Status;
-}
-
-/// The loaded functions, if `TRIAD_DYNAMIC_TESTS` asks for them.
-fn table() -> Option<&'static Table> {
-    static TABLE: OnceLock<Option<Table>> = OnceLock::new();
-    TABLE
-        .get_or_init(|| {
-            std::env::var_os("TRIAD_DYNAMIC_TESTS")?;
-            let path = super::cdylib();
-            // SAFETY (test): loading the FMU runtime runs no foreign initialisers.
-            let lib = unsafe { libloading::Library::new(&path) }
-                .unwrap_or_else(|e| panic!("{}: {e}", path.display()));
-            // SAFETY (test): `lib` is the triad runtime.
-            Some(unsafe { Table::load(lib) })
-        })
-        .as_ref()
-}
-
-/// Whether the tests call a loaded library (`TRIAD_DYNAMIC_TESTS`).
-#[must_use]
-pub fn dynamic() -> bool {
-    table().is_some()
 }

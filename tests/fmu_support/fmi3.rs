@@ -2,12 +2,10 @@
 //! through the exported `fmi3*` functions (linked), and a capturing `fmi3LogMessageCallback`
 //! (not variadic, so an ordinary `extern "C"` function).
 
+use super::api3::*;
 use super::TestModel;
 use std::ffi::{c_char, c_void, CStr, CString};
 use std::sync::Mutex;
-use triad::ffi::fmi3::cosim::*;
-use triad::ffi::fmi3::getset::*;
-use triad::ffi::fmi3::lifecycle::*;
 use triad::ffi::fmi3::types::*;
 use triad::variables::fmi3::{Table3, Var3};
 use triad::variables::{Causality, VarType};

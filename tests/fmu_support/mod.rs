@@ -14,7 +14,75 @@
 use std::ffi::{c_char, c_void, CStr, CString};
 use std::path::PathBuf;
 use std::sync::Mutex;
+/// Declares each FMI function once (`fn name(argument: type, …) -> return;`) and generates
+/// from that list the table of the loaded library's functions, its loading, and one forwarder
+/// per function that calls the loaded function or the linked export. The invoking module
+/// provides `linked` (the exports) and `table()` (the loaded table, if any).
+macro_rules! fmi_api {
+    ($(fn $name:ident($($arg:ident: $ty:ty),*) -> $ret:ty;)*) => {
+        /// The loaded library's functions.
+        struct Table {
+            _lib: libloading::Library,
+            $($name: unsafe extern "C" fn($($ty),*) -> $ret,)*
+        }
+
+        impl Table {
+            /// Every listed function of `lib`.
+            ///
+            /// # Safety
+            /// `lib` is a triad runtime: every symbol has exactly the standard's type (checked in
+            /// ffi/mod.rs).
+            unsafe fn load(lib: libloading::Library) -> Table {
+                // SAFETY (test): the caller's promise.
+                unsafe {
+                    Table {
+                        $($name: *lib
+                            .get(concat!(stringify!($name), "\0").as_bytes())
+                            .expect(concat!(stringify!($name), " exported")),)*
+                        _lib: lib,
+                    }
+                }
+            }
+        }
+
+        /// The loaded functions, if `TRIAD_DYNAMIC_TESTS` asks for them.
+        fn table() -> Option<&'static Table> {
+            static TABLE: std::sync::OnceLock<Option<Table>> = std::sync::OnceLock::new();
+            TABLE
+                .get_or_init(|| {
+                    std::env::var_os("TRIAD_DYNAMIC_TESTS")?;
+                    let path = super::cdylib();
+                    // SAFETY (test): loading the FMU runtime runs no foreign initialisers.
+                    let lib = unsafe { libloading::Library::new(&path) }
+                        .unwrap_or_else(|e| panic!("{}: {e}", path.display()));
+                    // SAFETY (test): `lib` is the triad runtime.
+                    Some(unsafe { Table::load(lib) })
+                })
+                .as_ref()
+        }
+
+        /// Whether the tests call a loaded library (`TRIAD_DYNAMIC_TESTS`).
+        #[must_use]
+        pub fn dynamic() -> bool {
+            table().is_some()
+        }
+
+        $(
+            #[doc = concat!("`", stringify!($name), "`, linked or loaded (module docs).")]
+            pub unsafe fn $name($($arg: $ty),*) -> $ret {
+                match table() {
+                    // SAFETY (test): the caller's FMI contract, forwarded.
+                    Some(t) => unsafe { (t.$name)($($arg),*) },
+                    // SAFETY (test): as above.
+                    None => unsafe { linked::$name($($arg),*) },
+                }
+            }
+        )*
+    };
+}
+
 pub mod api;
+pub mod api3;
 pub mod fmi3;
 use api::*;
 use triad::ffi::types::*;
