@@ -36,7 +36,7 @@ use super::error::StepError;
 use super::newton::{evaluate, resolve, solve, stage_rates, Held, Mode, Work};
 use crate::math::Vec3;
 use crate::mechanics::linalg::tree::NMAX;
-use crate::mechanics::model::constraint::{body_nodes, read3};
+use crate::mechanics::model::constraint::{body_nodes, read3, LinVec};
 use crate::mechanics::model::runtime::Model;
 
 /// Perturbation columns of a run's state (module docs), and their value at the start of the
@@ -191,6 +191,7 @@ impl Tangent {
             let du = &self.du[c * nin..(c + 1) * nin];
             matvec(model, &wz, xi, &mut y);
             matvec(model, &sw, xi, &mut ys);
+            joint_rows(model, ws, xi, &mut y[6 * nb..]);
             for b in 0..nb {
                 let br = &model.bodies[b];
                 let qbar = body_nodes(&ws.qbar, b);
@@ -293,6 +294,65 @@ impl Tangent {
             }
         }
         ru
+    }
+}
+
+/// The joint rows' right-hand side `∇g(q_{n+1}) Q_{n+1} ξ − ∇g(qₙ) Qₙ ξ` (the second term is 0
+/// for a column tangent to the rows at `qₙ`, but for round-off that is carried, not corrected),
+/// free of cancellation: for `g = u·w − c` with `u`, `w` affine in the nodes (linear parts
+/// `L_u`, `L_w`), `δ₀ = Qₙ ξ`, `Δδ = (Q_{n+1} − Qₙ) ξ = (0, δθ × Δdᵢ)` and `Δu = L_u(Δq)`:
+///
+/// ```text
+/// L_w(Δδ)·u₁ + L_w(δ₀)·Δu + L_u(Δδ)·w₁ + L_u(δ₀)·Δw
+/// ```
+///
+/// (the value `O(h)|ξ|` is formed from terms of its own size, not from `O(|ξ|)` ones).
+fn joint_rows(model: &Model, ws: &Work, xi: &[f64], out: &mut [f64]) {
+    let zero = [Vec3::zeros(); 4];
+    let of = |x: &[f64], b: Option<usize>| b.map_or(zero, |b| body_nodes(x, b));
+    // (δ₀, Δδ) of body b as nodes
+    let tangents = |b: Option<usize>| -> ([Vec3; 4], [Vec3; 4]) {
+        let Some(b) = b else {
+            return (zero, zero);
+        };
+        let (n0, inc) = (body_nodes(&ws.qn, b), body_nodes(&ws.dq, b));
+        let (dphi, dth) = (read3(xi, 6 * b), read3(xi, 6 * b + 3));
+        (
+            [
+                dphi,
+                dth.cross(&n0[1]),
+                dth.cross(&n0[2]),
+                dth.cross(&n0[3]),
+            ],
+            [
+                Vec3::zeros(),
+                dth.cross(&inc[1]),
+                dth.cross(&inc[2]),
+                dth.cross(&inc[3]),
+            ],
+        )
+    };
+    for jt in &model.joints {
+        let (a, b) = (jt.parent, Some(jt.child));
+        let (qa1, qb1) = (of(&ws.q, a), of(&ws.q, b));
+        let (dqa, dqb) = (of(&ws.dq, a), of(&ws.dq, b));
+        let ((d0a, dda), (d0b, ddb)) = (tangents(a), tangents(b));
+        for (k, row) in jt.rows.iter().enumerate() {
+            let lu = LinVec {
+                c: Vec3::zeros(),
+                ..row.u
+            };
+            let lw = LinVec {
+                c: Vec3::zeros(),
+                ..row.w
+            };
+            let (u1, w1) = (row.u.eval(&qa1, &qb1), row.w.eval(&qa1, &qb1));
+            let (du, dw) = (lu.eval(&dqa, &dqb), lw.eval(&dqa, &dqb));
+            out[jt.row0 + k] = lw.eval(&dda, &ddb).dot(&u1)
+                + lw.eval(&d0a, &d0b).dot(&du)
+                + lu.eval(&dda, &ddb).dot(&w1)
+                + lu.eval(&d0a, &d0b).dot(&dw);
+        }
     }
 }
 
