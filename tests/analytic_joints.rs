@@ -74,6 +74,8 @@ fn joint(
         damping: 0.0,
         stiffness: 0.0,
         limits: Default::default(),
+        armature: 0.0,
+
         loop_closing: false,
         initial: JointInitial::Coords { q, qd },
     }

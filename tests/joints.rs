@@ -95,6 +95,8 @@ fn setup(kind: JointType, world_parent: bool, seed: u64) -> ModelDef {
         damping: 0.0,
         stiffness: 0.0,
         limits: Default::default(),
+        armature: 0.0,
+
         loop_closing: false,
         initial: random_state(kind, &mut rng),
     };

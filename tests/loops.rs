@@ -58,6 +58,8 @@ fn revolute(
         damping: 0.0,
         stiffness: 0.0,
         limits: Default::default(),
+        armature: 0.0,
+
         loop_closing: false,
         initial: JointInitial::Coords {
             q: vec![q],

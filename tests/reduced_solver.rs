@@ -55,6 +55,8 @@ fn model(kind: JointType) -> ModelDef {
             4.0
         },
         limits: Default::default(),
+        armature: 0.0,
+
         loop_closing: false,
         initial: initial(s),
     };

@@ -277,12 +277,21 @@ pub fn run(args: &LinearizeArgs) -> Result<(), CliError> {
     let mut from_op = Simulation::new(&op.initial_def(&def, &x_op), settings, t0)
         .map_err(|e| format!("{}: {e}", args.model))?;
     from_op.state_mut().inputs_mut().copy_from_slice(&op.u);
-    let map = from_op.step_map(h).map_err(|e| {
-        format!(
-            "{}: the step of {h} s from the operating point: {e}",
-            args.model
-        )
-    })?;
+    // without --step a model whose step map is not available still gets A, B, C, D
+    let map = match from_op.step_map(h) {
+        Ok(map) => Some(map),
+        Err(e) if args.step.is_none() => {
+            eprintln!("note: no Ad, Bd (the step of {h} s from the operating point: {e})");
+            None
+        }
+        Err(e) => {
+            return Err(format!(
+                "{}: the step of {h} s from the operating point: {e}",
+                args.model
+            )
+            .into())
+        }
+    };
     let nu = u_cols.len();
     let ny = ys.len();
     let x0: Vec<f64> = op.q.iter().chain(&op.nu).copied().collect();
@@ -297,9 +306,6 @@ pub fn run(args: &LinearizeArgs) -> Result<(), CliError> {
         ("B", Value::Matrix(nx, nu, pick(&lin.b, nx))),
         ("C", Value::Matrix(ny, nx, row_major(&lin.c))),
         ("D", Value::Matrix(ny, nu, pick(&lin.d, ny))),
-        ("Ad", Value::Matrix(nx, nx, row_major(&map.ad))),
-        ("Bd", Value::Matrix(nx, nu, pick(&map.bd, nx))),
-        ("h", Value::Scalar(h)),
         ("x_names", Value::Names(x_names)),
         (
             "u_names",
@@ -312,6 +318,12 @@ pub fn run(args: &LinearizeArgs) -> Result<(), CliError> {
         ("xdot0", Value::Vector(lin.xdot0.clone())),
         ("t0", Value::Scalar(t0)),
     ];
+    let mut entries = entries;
+    if let Some(map) = &map {
+        entries.push(("Ad", Value::Matrix(nx, nx, row_major(&map.ad))));
+        entries.push(("Bd", Value::Matrix(nx, nu, pick(&map.bd, nx))));
+        entries.push(("h", Value::Scalar(h)));
+    }
     let target = args.output.clone().unwrap_or_else(|| PathBuf::from("-"));
     if target.as_os_str() == "-" {
         print!("{}", matrix_file::json(&entries));

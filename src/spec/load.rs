@@ -172,6 +172,7 @@ const JOINT: &[Field] = &[
     opt("actuated", BOOL),
     opt("damping", NUM),
     opt("stiffness", NUM),
+    opt("armature", NUM),
     opt("lower", NUM),
     opt("upper", NUM),
     opt("effort", NUM),

@@ -227,6 +227,8 @@ pub(crate) fn build(spec: &Spec) -> (ModelDef, SolverSettings) {
             damping: j.damping,
             stiffness: j.stiffness,
             limits: limits(j),
+            armature: j.armature,
+
             loop_closing: j.is_loop_closing(),
             initial: initial(j),
         })

@@ -69,6 +69,12 @@ pub struct Spec {
 fn default_friction() -> f64 {
     crate::mechanics::ContactLaw::default().friction
 }
+/// Whether a number is 0 (fields written only when set).
+#[allow(clippy::trivially_copy_pass_by_ref)]
+fn is_zero(x: &f64) -> bool {
+    *x == 0.0
+}
+
 fn default_contact_stiffness() -> f64 {
     crate::mechanics::ContactLaw::default().stiffness
 }
@@ -358,6 +364,10 @@ pub struct JointSpec {
     /// Linear stiffness about q = 0 per coordinate, N·m/rad or N/m (≥ 0; not spherical).
     #[serde(default)]
     pub stiffness: f64,
+    /// Rotor inertia in joint space per coordinate, kg·m² or kg (≥ 0; not spherical or
+    /// fixed): adds `armature·q̇²/2` of kinetic energy, as MuJoCo and Pinocchio define it.
+    #[serde(default, skip_serializing_if = "is_zero")]
+    pub armature: f64,
     /// Revolute and prismatic joints: lower position limit, rad or m (a one-sided stop).
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub lower: Option<f64>,

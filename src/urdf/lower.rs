@@ -432,6 +432,7 @@ pub(crate) fn spec(
                     j.damping
                 },
                 stiffness: 0.0,
+                armature: 0.0,
                 lower,
                 upper,
                 effort,

@@ -72,6 +72,7 @@ pub fn read_param(acc: Accessor, def: &ModelDef, settings: &SolverSettings) -> O
         Accessor::Effort(j) => def.joints.get(j).map(|j| j.limits.effort),
         Accessor::StopStiffness(j) => def.joints.get(j).map(|j| j.limits.stop_stiffness),
         Accessor::StopDamping(j) => def.joints.get(j).map(|j| j.limits.stop_damping),
+        Accessor::Armature(j) => def.joints.get(j).map(|j| j.armature),
         Accessor::MaxStep => Some(settings.max_step),
         Accessor::Tolerance => Some(settings.tolerance),
         Accessor::Order => Some(f64::from(settings.order)),
@@ -199,6 +200,10 @@ pub fn write_param(
         Accessor::StopDamping(j) => {
             named("stop_damping", ranges::non_negative(value))?;
             limits(def, j)?.stop_damping = value;
+        }
+        Accessor::Armature(j) => {
+            named("armature", ranges::non_negative(value))?;
+            def.joints.get_mut(j).ok_or("no such joint")?.armature = value;
         }
         Accessor::MaxStep => {
             named("solver.max_step", ranges::max_step(value))?;

@@ -81,6 +81,20 @@ fn joint_parameters(b: &mut Builder, joint: usize, j: &JointDef) {
         Accessor::Damping(joint),
     );
     limit_parameters(b, joint, j);
+    if j.armature > 0.0 {
+        let unit = if j.kind == JointType::Prismatic {
+            "kg"
+        } else {
+            "kg.m2"
+        };
+        b.fixed(
+            format!("joint.{n}.armature"),
+            j.armature,
+            Some(unit),
+            format!("rotor inertia of joint {n} in joint space on each coordinate (kg.m2 on angles, kg on slides): adds armature q'^2/2 of kinetic energy"),
+            Accessor::Armature(joint),
+        );
+    }
     if j.kind != JointType::Spherical {
         let per = per.replace(".s", "");
         tunable(

@@ -198,6 +198,8 @@ pub enum Accessor {
     StopStiffness(usize),
     /// `joint.J.stop_damping` (fixed).
     StopDamping(usize),
+    /// `joint.J.armature` (fixed).
+    Armature(usize),
     /// `solver.max_step`.
     MaxStep,
     /// `solver.tolerance`.

@@ -53,6 +53,16 @@ impl Model {
                 joint_input[j] = Some(first);
             }
         }
+        for jd in &def.joints {
+            let a = jd.armature;
+            let bad_kind = matches!(jd.kind, JointType::Spherical | JointType::Fixed);
+            if !(a.is_finite() && a >= 0.0) || (a > 0.0 && (bad_kind || jd.loop_closing)) {
+                return Err(ModelError::Invalid(format!(
+                    "joint '{}': armature must be finite and >= 0, and only on the coordinates of a tree joint that is not spherical or fixed (got {a})",
+                    jd.name
+                )));
+            }
+        }
         let mut body_torques = Vec::new();
         let mut body_forces = Vec::new();
         for load in &def.loads {
@@ -109,6 +119,7 @@ impl Model {
             tree_joint: vec![None; def.bodies.len()],
             nrows: 0,
             nturn: 0,
+            narm: 0,
             dense: false,
             reduced: false,
             exact_reduced: false,
@@ -229,6 +240,7 @@ pub(crate) fn build(model: &mut Model, joint_input: &[Option<usize>]) -> Result<
     let mut row0 = 0;
     let mut turn0 = 0;
     let mut angles0 = Vec::new();
+    let mut arm0 = 0;
     for (j, (jd, g)) in def.joints.iter().zip(geoms).enumerate() {
         let mut rows = Vec::new();
         let mut dropped = Vec::new();
@@ -285,6 +297,7 @@ pub(crate) fn build(model: &mut Model, joint_input: &[Option<usize>]) -> Result<
             }
         }
         let nturn = dofs.iter().filter(|d| matches!(d, DofRt::Turn(_))).count();
+        let dofs_len = dofs.len();
         let nrow = rows.len();
         let sparse = rows
             .iter()
@@ -308,12 +321,18 @@ pub(crate) fn build(model: &mut Model, joint_input: &[Option<usize>]) -> Result<
             } else {
                 f64::INFINITY
             },
+            armature: if spherical { 0.0 } else { jd.armature },
+            arm0,
         });
+        if !spherical && jd.armature > 0.0 {
+            arm0 += dofs_len;
+        }
         row0 += nrow;
         turn0 += nturn;
     }
     model.nrows = row0;
     model.nturn = turn0;
+    model.narm = arm0;
     model.angles0 = angles0;
     // loop-closing joints (`tree.loop_joints`) form the border of the tree solve (`border`);
     // the dense LU is only the test oracle (`Model::set_dense_solver`)

@@ -167,6 +167,10 @@ pub struct JointDef {
     pub damping: f64,
     /// Linear stiffness about q = 0 on each coordinate, N·m/rad or N/m (≥ 0; tunable).
     pub stiffness: f64,
+    /// Rotor inertia in joint space on each coordinate, kg·m² or kg (≥ 0): adds `a q̇²/2` of
+    /// kinetic energy per coordinate, as MuJoCo's `armature` and Pinocchio's `model.armature`
+    /// (not for spherical or fixed joints).
+    pub armature: f64,
     /// Position stops and actuator effort limit (revolute and prismatic joints).
     pub limits: JointLimits,
     /// True for a joint that closes a kinematic loop (its child already has a tree parent).

@@ -36,6 +36,8 @@ fn revolute(parent: Option<usize>, child: usize, at: Vec3, axis: Vec3, q: f64) -
         damping: 0.0,
         stiffness: 0.0,
         limits: Default::default(),
+        armature: 0.0,
+
         loop_closing: false,
         initial: JointInitial::Coords {
             q: vec![q],

@@ -39,6 +39,8 @@ fn degenerate_axes_are_rejected() {
         damping: 0.0,
         stiffness: 0.0,
         limits: Default::default(),
+        armature: 0.0,
+
         loop_closing: false,
         initial: Default::default(),
     };

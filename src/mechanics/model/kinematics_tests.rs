@@ -23,6 +23,8 @@ fn model(joints: &[(Option<usize>, usize, bool)], free: &[usize]) -> ModelDef {
             damping: 0.0,
             stiffness: 0.0,
             limits: Default::default(),
+            armature: 0.0,
+
             loop_closing,
             initial: Default::default(),
         };

@@ -123,6 +123,11 @@ pub(crate) struct JointRt {
     pub stops: Option<Stops>,
     /// Largest actuator input magnitude (+∞: none).
     pub effort: f64,
+    /// Rotor inertia on each coordinate of `dofs`, kg·m² or kg (0: none).
+    pub armature: f64,
+    /// Offset of this joint's rotor rates in the state's `arm` (one per dof when `armature`
+    /// is set).
+    pub arm0: usize,
 }
 
 /// A built, immutable multibody model.
@@ -144,6 +149,8 @@ pub struct Model {
     pub(crate) nrows: usize,
     /// Number of turn dofs (unwrapping memory length).
     pub(crate) nturn: usize,
+    /// Number of joint coordinates with a rotor inertia (the state's rotor rates).
+    pub(crate) narm: usize,
     /// Use the dense LU over all unknowns (O(N³)) instead of the tree solve (bordered for loops):
     /// the test oracle only, false as built (see [`Model::set_dense_solver`]).
     pub(crate) dense: bool,

@@ -21,10 +21,12 @@
 //!   F_b = m (a_G − g) − f_ext,   N_b = I α + ω × I ω − n_ext + p_G × F_b    (per body)
 //!   Q_k = ω_k · (N − p × F) + u_k · F    (subtree totals; dof k moves the subtree by the
 //!                                          twist ω_k about the point p with velocity u_k there)
-//!   res = Q − (act − k q − c q̇ + stop(q, q̇))   (actuators clamped to ±effort)
+//!   res = Q + a ν̇ − (act − k q − c q̇ + stop(q, q̇))   (actuators clamped to ±effort;
+//!                                                    a: the rotor inertia, armature)
 //!   stop(q, q̇) = −k⟨q − upper⟩ + k⟨lower − q⟩ − c (⟨q − upper⟩ + ⟨lower − q⟩) q̇
 //! coordinate rates  q̇ = ν, except  θ̇ = w + ½ θ × w  (spherical),  θ̇ = ω − ½ θ × ω  (free)
-//! energy  E = Σ ½ m|v_G|² + ½ ω·Iω − m g·p_G + Σ ½ k q² + stops   (as `outputs.rs`)
+//! energy  E = Σ ½ m|v_G|² + ½ ω·Iω − m g·p_G + Σ (½ k q² + ½ a q̇²) + stops   (as `outputs.rs`)
+//! mass matrix  M(q) by composite inertias, plus a on the diagonal of each rotor's coordinate
 //! ```
 //!
 //! The loads are those of the step (`step/joint_loads.rs`): actuator torques `±τ n` and slide
@@ -110,6 +112,7 @@ struct JointData {
     at: usize,
     damping: f64,
     stiffness: f64,
+    armature: f64,
     stops: Option<Stops>,
     effort: f64,
     input: Option<usize>,
@@ -249,6 +252,7 @@ impl TreeDynamics {
                 at,
                 damping: damping[j],
                 stiffness: stiffness[j],
+                armature: jt.armature,
                 stops: jt.stops,
                 effort: jt.effort,
                 input: jt.input,
@@ -527,6 +531,14 @@ impl TreeDynamics {
             nn[b] = nb_ + pg.cross(&fb);
         }
         let mut res = self.generalized(&m, f, nn);
+        // rotors: a ν̇ per coordinate
+        for jd in self.joints.iter().flatten() {
+            if jd.armature > 0.0 {
+                for k in 0..jd.kind.dof() {
+                    res[jd.at + k] += nud[jd.at + k] * c::<T>(jd.armature);
+                }
+            }
+        }
         if !inertial_only {
             for jd in self.joints.iter().flatten() {
                 if jd.kind == JointType::Spherical {
@@ -631,7 +643,8 @@ impl TreeDynamics {
             }
             for k in 0..jd.kind.dof() {
                 let qk = q[jd.at + k];
-                e += qk * qk * c::<T>(0.5 * jd.stiffness);
+                let vk = nu[jd.at + k];
+                e += qk * qk * c::<T>(0.5 * jd.stiffness) + vk * vk * c::<T>(0.5 * jd.armature);
                 if let Some(st) = &jd.stops {
                     for p in [qk - c::<T>(st.upper), c::<T>(st.lower) - qk] {
                         if p > T::zero() {
@@ -776,6 +789,13 @@ impl TreeDynamics {
                         mm[(j, i)] = v;
                     }
                     at = parent;
+                }
+            }
+        }
+        for jd in self.joints.iter().flatten() {
+            if jd.armature > 0.0 {
+                for k in jd.at..jd.at + jd.kind.dof() {
+                    mm[(k, k)] += c::<T>(jd.armature);
                 }
             }
         }

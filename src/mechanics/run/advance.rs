@@ -124,6 +124,7 @@ fn compose_from(
     ws.lam.copy_from_slice(&state.lam);
     ws.ang.copy_from_slice(&state.angles);
     ws.bristle.copy_from_slice(&state.bristle);
+    ws.arm.copy_from_slice(&state.arm);
     ws.work = state.work;
     ws.hist.copy_from_slice(&state.hist);
     ws.hprev = state.hprev;
@@ -154,6 +155,7 @@ fn commit(state: &mut State, h: f64, stats: &StepStats) {
     std::mem::swap(&mut state.lam, &mut ws.lam);
     std::mem::swap(&mut state.angles, &mut ws.ang);
     std::mem::swap(&mut state.bristle, &mut ws.bristle);
+    std::mem::swap(&mut state.arm, &mut ws.arm);
     state.work = ws.work;
     std::mem::swap(&mut state.hist, &mut ws.hist);
     state.hprev = ws.hprev;

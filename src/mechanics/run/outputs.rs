@@ -129,7 +129,8 @@ impl Outputs {
 /// Recomputes every output from the nodal state (theory.md §4.7). Allocates nothing.
 ///
 /// `v` are the nodal velocities `vₙ` of the scheme (12 per body, world frame): the energy
-/// `½ vₙᵀ M vₙ + V` (the conserved discrete energy), `p` and `L` come from them. `vp` are their
+/// `½ vₙᵀ M vₙ + Σ ½ a ω² + V` (the conserved discrete energy; `arm` the rotor rates `ω` of the
+/// coordinates with an armature `a`), `p` and `L` come from them. `vp` are their
 /// M-orthogonal projection onto the admissible velocities at `q` (`projection.rs`, same layout):
 /// the body velocities `v`, `w` and the joint rates come from `vp`, so that they satisfy the
 /// velocity constraints to round-off.
@@ -142,6 +143,7 @@ pub(crate) fn update(
     angles: &[f64],
     stiffness: &[f64],
     bristle: &[f64],
+    arm: &[f64],
     work: f64,
     out: &mut Outputs,
 ) {
@@ -188,7 +190,12 @@ pub(crate) fn update(
         // joint springs
         let k = stiffness[j];
         let mut turn = jt.turn0;
-        for dof in &jt.dofs {
+        for (dk, dof) in jt.dofs.iter().enumerate() {
+            // the rotor's kinetic energy ½ a ω² (its own rate, as the step carries it)
+            if jt.armature > 0.0 {
+                let w = arm[jt.arm0 + dk];
+                energy += 0.5 * jt.armature * w * w;
+            }
             match dof {
                 DofRt::Slide(row) => {
                     let s = row.eval(&qa, &qb);

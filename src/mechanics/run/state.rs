@@ -31,6 +31,9 @@ pub struct State {
     pub(crate) work: f64,
     /// Contact friction bristles (3 per ground point, then per body–body feature), m.
     pub(crate) bristle: Vec<f64>,
+    /// Rotor rates of the joint coordinates with an armature (`JointRt::arm0`), rad/s or m/s:
+    /// the rotor's own velocity, carried as the nodal velocities are (`v_{n+1} = 2Δ/h − vₙ`).
+    pub(crate) arm: Vec<f64>,
     /// Predictor history: difference tables of the stages' mean rates (see `Work::hist`).
     pub(crate) hist: Vec<f64>,
     /// Sizes of the stages of each table, newest first, s (0: none).
@@ -77,10 +80,22 @@ impl State {
             outputs: Outputs::for_model(model),
             order2: (0, None),
             bristle: vec![0.0; 3 * model.contact.bristles()],
+            arm: vec![0.0; model.narm],
             ws: Work::new(model),
             pw: ProjWork::new(model),
         };
         s.refresh_outputs(model);
+        // the rotors start at the joints' rates (the admissible ones the outputs report)
+        for (j, jt) in model.joints.iter().enumerate() {
+            if jt.armature > 0.0 {
+                for k in 0..jt.dofs.len() {
+                    s.arm[jt.arm0 + k] = s.outputs.joints[j].qd[k];
+                }
+            }
+        }
+        if model.narm > 0 {
+            s.refresh_outputs(model);
+        }
         s
     }
 
@@ -100,6 +115,7 @@ impl State {
             &self.angles,
             &self.stiffness,
             &self.bristle,
+            &self.arm,
             self.work,
             &mut self.outputs,
         );
@@ -200,6 +216,7 @@ impl State {
         self.angles.clone_from(&src.angles);
         self.work = src.work;
         self.bristle.clone_from(&src.bristle);
+        self.arm.clone_from(&src.arm);
         self.hist.clone_from(&src.hist);
         self.hprev = src.hprev;
         self.memory = src.memory;
@@ -237,7 +254,7 @@ impl State {
 
     /// Every number that determines the future of this state (time, q, v, multipliers used as
     /// the Newton start, inputs, tunable parameters, accumulated work, unwrapping memory), flat:
-    /// `[t, lag, q.., v.., v_lo.., λ/2.., angles.., work, hist.., h_prev.., memory (3), inputs.., damping.., stiffness.., step control..]`.
+    /// `[t, lag, q.., v.., v_lo.., λ/2.., angles.., work, hist.., h_prev.., memory (3), inputs.., damping.., stiffness.., bristles.., rotor rates.., step control..]`.
     #[must_use]
     pub fn snapshot(&self) -> Vec<f64> {
         let mut out = Vec::with_capacity(self.snapshot_len());
@@ -256,6 +273,7 @@ impl State {
         out.extend_from_slice(&self.damping);
         out.extend_from_slice(&self.stiffness);
         out.extend_from_slice(&self.bristle);
+        out.extend_from_slice(&self.arm);
         self.ctrl.write_f64(&mut out);
         out
     }
@@ -272,6 +290,7 @@ impl State {
             + self.damping.len()
             + self.stiffness.len()
             + self.bristle.len()
+            + self.arm.len()
             + self.ctrl.snapshot_len()
     }
 
@@ -311,6 +330,7 @@ impl State {
         take(&mut self.damping);
         take(&mut self.stiffness);
         take(&mut self.bristle);
+        take(&mut self.arm);
         self.ctrl.read_f64(&data[at..])?;
         self.t = t[0];
         self.lag = t[1];

@@ -31,6 +31,13 @@ pub struct StepMap {
 /// # Errors
 /// Why the model has no minimal coordinates (a loop, contact).
 pub fn begin_step_map(model: &Model, state: &mut State) -> Result<(), String> {
+    if model.narm > 0 {
+        return Err(
+            "the discrete-time Ad, Bd of models with an armature are not available yet (the \
+             continuous-time A, B include it)"
+                .into(),
+        );
+    }
     let op = Operating::of(model, state).map_err(|e| e.to_string())?;
     let (n, m) = (op.q.len(), model.inputs.len());
     let nb = model.bodies.len();

@@ -1,6 +1,7 @@
 //! Joint loads of the Newton residual and Jacobian: actuators (consistent torques `±τ n̄` and
-//! slide forces, clamped to `±effort`), linear springs, viscous dampers and one-sided stops
-//! (`model::stops`) on the joint coordinates (the midpoint
+//! slide forces, clamped to `±effort`), linear springs, viscous dampers, one-sided stops
+//! (`model::stops`) and rotors (armature `a`: the load `−(2a/h²)(Δ − h ω₀)` of the midpoint
+//! rule on the coordinate with the rotor's rate `ω₀`, `turn`) on the joint coordinates (the midpoint
 //! gradient of a slide, the `atan2` discrete gradient of `turn` for an angle, the rotation
 //! increments for a spherical joint), added to the node forces of the joint's two bodies and,
 //! in a Jacobian pass, to their coupling blocks (theory.md §4.2; residual scaled by `h²/2`).
@@ -122,7 +123,11 @@ impl Acc {
 /// chain do not, and their load pass is skipped.
 pub(crate) fn loaded(model: &Model, held: &Held, j: usize) -> bool {
     let jt = &model.joints[j];
-    jt.input.is_some() || jt.stops.is_some() || held.stiffness[j] != 0.0 || held.damping[j] != 0.0
+    jt.input.is_some()
+        || jt.stops.is_some()
+        || held.stiffness[j] != 0.0
+        || held.damping[j] != 0.0
+        || jt.armature != 0.0
 }
 
 /// Adds the loads of joint `j` (stage size `h`, s) at the pair's iterate to `acc` (and the
@@ -178,6 +183,12 @@ pub(crate) fn joint_loads(
         let act = jt
             .input
             .map_or(0.0, |i| actuator_input(dk, held.inputs, i, jt.effort));
+        // the rotor: armature and its rate at the stage start (`turn`)
+        let arm = if jt.armature > 0.0 {
+            [jt.armature, ws.arm[jt.arm0 + dk]]
+        } else {
+            [0.0; 2]
+        };
         match dof {
             DofRt::Slide(row) => {
                 let qa_n = a.map_or(zero, |a| body_nodes(&ws.qn, a));
@@ -186,8 +197,19 @@ pub(crate) fn joint_loads(
                 let s1 = row.eval(qa, qb);
                 let ds = s1 - s0;
                 let (f_stop, df_stop) = jt.stops.map_or((0.0, 0.0), |st| st.force(s0, ds, h));
-                let coef = act - 0.5 * k_s * (s0 + s1) - c_d * ds / h + f_stop;
-                let stiff = k_s != 0.0 || c_d != 0.0 || df_stop != 0.0;
+                let rotor = 2.0 * arm[0] / (h * h);
+                // the rotor's Δ − hω is O(h²): Δ from the increments, without the
+                // cancellation of s₁ − s₀
+                let f_rotor = if rotor == 0.0 {
+                    0.0
+                } else {
+                    let dqa = a.map_or(zero, |a| body_nodes(&ws.dq, a));
+                    let dqb = body_nodes(&ws.dq, bb);
+                    let dsr = row_increment(row, qa_bar, qb_bar, &dqa, &dqb);
+                    rotor * (dsr - h * arm[1])
+                };
+                let coef = act - 0.5 * k_s * (s0 + s1) - c_d * ds / h + f_stop - f_rotor;
+                let stiff = k_s != 0.0 || c_d != 0.0 || df_stop != 0.0 || rotor != 0.0;
                 if coef == 0.0 && !stiff {
                     // idle, or stops that neither end of the step has reached
                     continue;
@@ -195,7 +217,7 @@ pub(crate) fn joint_loads(
                 let grad = add_row(row, -hh * coef, fa, fb, &mut ws.cbody, cab);
                 if jac && stiff {
                     // rank-one term d(−hh·coef)/dx = hh (k/2 + c/h − ∂f_stop/∂s₁) ∇s(q) Q
-                    let kap = hh * (0.5 * k_s + c_d / h - df_stop);
+                    let kap = hh * (0.5 * k_s + c_d / h + rotor - df_stop);
                     let mut g1 = [Vec3::zeros(); 8];
                     row.gradient(qa, qb, &mut g1);
                     let cb_ = project(&grad[4..], dbar_b);
@@ -225,7 +247,7 @@ pub(crate) fn joint_loads(
                 // the angle step, and the spring and damper as the discrete gradient
                 // F = f β (c̄ ∇s(q̄) − s̄ ∇c(q̄)) of `turn`
                 let t0 = ws.ang[turn];
-                let loaded = k_s != 0.0 || c_d != 0.0 || jt.stops.is_some();
+                let loaded = k_s != 0.0 || c_d != 0.0 || jt.stops.is_some() || arm[0] != 0.0;
                 if loaded {
                     let dqa = a.map_or(zero, |a| body_nodes(&ws.dq, a));
                     let dqb = body_nodes(&ws.dq, bb);
@@ -234,7 +256,8 @@ pub(crate) fn joint_loads(
                     let (s0, c0) = (tr.sin.eval(&qa_n, &qb_n), tr.cos.eval(&qa_n, &qb_n));
                     let ds = row_increment(&tr.sin, qa_bar, qb_bar, &dqa, &dqb);
                     let dc = row_increment(&tr.cos, qa_bar, qb_bar, &dqa, &dqb);
-                    let st = turn_step([s0, c0], [ds, dc], t0, k_s, c_d, jt.stops.as_ref(), h);
+                    let stops = jt.stops.as_ref();
+                    let st = turn_step([s0, c0], [ds, dc], t0, k_s, c_d, stops, arm, h);
                     if st.fs == 0.0 && st.fc == 0.0 && st.jac == [0.0; 4] {
                         // stops that neither end of the step has reached, and nothing else
                         turn += 1;

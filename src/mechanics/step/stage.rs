@@ -348,6 +348,7 @@ fn stage(
         ws.lam[k] = ws.mu[k] * ih2;
     }
     ws.ang.copy_from_slice(&ws.ang1);
+    ws.arm.copy_from_slice(&ws.arm1);
     ws.work += work;
     record(ws, nb, h, table);
     Ok(StepStats {

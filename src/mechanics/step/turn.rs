@@ -11,8 +11,8 @@
 //! ```
 //!
 //! (`Δs = Δu·w̄ + ū·Δw` exactly, from the stored increments `q − qₙ`). The generalised force `f`
-//! on the coordinate (spring `−k t̄`, damper `−c Δt/h`, with `t̄ = t₀ + Δt/2`) acts on the
-//! coordinates as
+//! on the coordinate (spring `−k t̄`, damper `−c Δt/h`, with `t̄ = t₀ + Δt/2`, and a rotor of
+//! inertia `a` in joint space, `−(2a/h²)(Δt − h ω₀)`) acts on the coordinates as
 //!
 //! ```text
 //! F = f β (c̄ ∇s(q̄) − s̄ ∇c(q̄)),   s̄ = s₀ + Δs/2,  c̄ = c₀ + Δc/2
@@ -20,6 +20,9 @@
 //!
 //! Since `∇s(q̄)·Δq = Δs` exactly (s is quadratic) and `c̄ Δs − s̄ Δc = X`, `F·Δq = f Δt`: the
 //! spring releases exactly `½k(t₁² − t₀²)` and the damper dissipates exactly `c Δt²/h ≥ 0`.
+//! The rotor is the midpoint rule on the joint coordinate with its own rate `ω` (state,
+//! `ω₁ = 2Δt/h − ω₀`): its load's work `−(2a/h²)(Δt − hω₀)Δt = −½a(ω₁² − ω₀²)` is exactly the
+//! rotor's change of kinetic energy, so `energy − work` stays exact with it.
 //! `F` is a combination of midpoint gradients of rigid-motion invariants, so it preserves linear
 //! and angular momentum. `β = atan2(X, Y)/X` is smooth (`β → 1/Y` as `X → 0`, by its series), so
 //! nothing divides by a small increment: a joint at rest under a stiff spring is as regular as a
@@ -64,9 +67,12 @@ pub(crate) struct TurnStep {
 }
 
 /// The angle step from `[s₀, c₀]` with increments `[Δs, Δc]`, and the spring (stiffness `k`,
-/// N·m/rad, about angle 0), damper (`c_d`, N·m·s/rad) and stop (`model::stops`) load for the
-/// start angle `t0` (rad) and stage size `h` (s).
+/// N·m/rad, about angle 0), damper (`c_d`, N·m·s/rad), stop (`model::stops`) and rotor
+/// (`[a, ω₀]`: armature, kg·m², and the rotor's rate at the stage start, rad/s; the load
+/// `−(2a/h²)(Δt − h ω₀)`, module docs) load for the start angle `t0` (rad) and stage size `h`
+/// (s).
 #[must_use]
+#[allow(clippy::too_many_arguments)]
 pub(crate) fn turn_step(
     [s0, c0]: [f64; 2],
     [ds, dc]: [f64; 2],
@@ -74,6 +80,7 @@ pub(crate) fn turn_step(
     k: f64,
     c_d: f64,
     stops: Option<&Stops>,
+    [a, w0]: [f64; 2],
     h: f64,
 ) -> TurnStep {
     let x = c0 * ds - s0 * dc;
@@ -81,20 +88,21 @@ pub(crate) fn turn_step(
     let y = c0 * c1 + s0 * s1;
     let (b, bx, by) = beta(x, y);
     let dt = b * x;
-    if k == 0.0 && c_d == 0.0 && stops.is_none() {
+    if k == 0.0 && c_d == 0.0 && stops.is_none() && a == 0.0 {
         return TurnStep {
             dt,
             ..TurnStep::default()
         };
     }
     let (f_stop, df_stop) = stops.map_or((0.0, 0.0), |st| st.force(t0, dt, h));
-    let f = -k * (t0 + 0.5 * dt) - c_d * dt / h + f_stop;
+    let rotor = 2.0 * a / (h * h);
+    let f = -k * (t0 + 0.5 * dt) - c_d * dt / h + f_stop - rotor * (dt - h * w0);
     let (sb, cb) = (s0 + 0.5 * ds, c0 + 0.5 * dc);
     // ∂X/∂(s₁, c₁) = (c₀, −s₀), ∂Y/∂(s₁, c₁) = (s₀, c₀)
     let r = x * x + y * y;
     let ddt = [(y * c0 - x * s0) / r, (-y * s0 - x * c0) / r];
     let db = [bx * c0 + by * s0, -bx * s0 + by * c0];
-    let df = -(0.5 * k + c_d / h) + df_stop;
+    let df = -(0.5 * k + c_d / h + rotor) + df_stop;
     let fb = f * b;
     let mut jac = [0.0; 4];
     for v in 0..2 {
@@ -197,16 +205,21 @@ mod tests {
     #[test]
     fn the_force_does_exactly_the_spring_and_damper_work() {
         let (k, c, h) = (270.0, 38.0, 0.02);
+        // a rotor of 0.3 kg·m² turning at 0.7 rad/s
+        let (ar, w0) = (0.3, 0.7);
         for &(t0, dt_true) in &[(0.4_f64, 0.03_f64), (-2.9, -0.5), (1.0, 1e-11), (3.0, 0.3)] {
             let (s0, c0) = (t0.sin(), t0.cos());
             let t1: f64 = t0 + dt_true;
             let (ds, dc) = (t1.sin() - s0, t1.cos() - c0);
-            let st = turn_step([s0, c0], [ds, dc], t0, k, c, None, h);
+            let st = turn_step([s0, c0], [ds, dc], t0, k, c, None, [ar, w0], h);
             assert!((st.dt - dt_true).abs() <= 1e-15 * (1.0 + t0.abs()) + 1e-12 * dt_true.abs());
-            // F·Δq = fs Δs + fc Δc = −½k(t₁² − t₀²) − c Δt²/h
+            // F·Δq = fs Δs + fc Δc = −½k(t₁² − t₀²) − c Δt²/h − ½a(ω₁² − ω₀²)
             let w = st.fs * ds + st.fc * dc;
             let tt = t0 + st.dt;
-            let expected = -0.5 * k * (tt * tt - t0 * t0) - c * st.dt * st.dt / h;
+            let w1 = 2.0 * st.dt / h - w0;
+            let expected = -0.5 * k * (tt * tt - t0 * t0)
+                - c * st.dt * st.dt / h
+                - 0.5 * ar * (w1 * w1 - w0 * w0);
             assert!(
                 (w - expected).abs() <= 1e-12 * (1.0 + expected.abs()),
                 "{w} {expected}"
@@ -215,8 +228,8 @@ mod tests {
             let e = 1e-7;
             for v in 0..2 {
                 let (a, b) = if v == 0 { (e, 0.0) } else { (0.0, e) };
-                let p = turn_step([s0, c0], [ds + a, dc + b], t0, k, c, None, h);
-                let m = turn_step([s0, c0], [ds - a, dc - b], t0, k, c, None, h);
+                let p = turn_step([s0, c0], [ds + a, dc + b], t0, k, c, None, [ar, w0], h);
+                let m = turn_step([s0, c0], [ds - a, dc - b], t0, k, c, None, [ar, w0], h);
                 let fs = (p.fs - m.fs) / (2.0 * e);
                 let fc = (p.fc - m.fc) / (2.0 * e);
                 assert!(

@@ -102,6 +102,10 @@ pub(crate) struct Work {
     pub lam: Vec<f64>,
     /// Unwrapped turn angles at the stage start, rad.
     pub ang: Vec<f64>,
+    /// Rotor rates at the stage start (`State::arm`), rad/s or m/s.
+    pub arm: Vec<f64>,
+    /// Rotor rates at the iterate's end of the stage (`finish`).
+    pub arm1: Vec<f64>,
     /// Accumulated work at the stage start, J.
     pub work: f64,
     /// Per joint, the energy its dampers (viscous and stop) took over the stages of the
@@ -205,6 +209,8 @@ impl Work {
             hv_lo: vec![0.0; 12 * nb],
             lam: vec![0.0; nr],
             ang: model.angles0.clone(),
+            arm: vec![0.0; model.narm],
+            arm1: vec![0.0; model.narm],
             work: 0.0,
             loss: vec![0.0; model.joints.len()],
             contact_loss: 0.0,

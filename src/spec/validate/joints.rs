@@ -92,6 +92,22 @@ fn fields(report: &mut Report, p: &str, j: &JointSpec) {
             );
         }
     }
+    if let Err(e) = ranges::non_negative(j.armature) {
+        report.push(format!("{p}.armature"), e);
+    } else if j.armature > 0.0 && j.is_loop_closing() {
+        report.push(
+            format!("{p}.armature"),
+            "a loop-closing joint takes no armature (its coordinate is not free: put the rotor inertia on a tree joint of the loop)",
+        );
+    } else if j.armature > 0.0 && matches!(j.kind, JointKind::Fixed | JointKind::Spherical) {
+        report.push(
+            format!("{p}.armature"),
+            format!(
+                "{} joints take no armature (rotor inertia acts on a joint coordinate: revolute, prismatic, cylindrical, universal or planar)",
+                kind_name(j.kind)
+            ),
+        );
+    }
     if j.stiffness != 0.0 && j.kind == JointKind::Spherical {
         report.push(
             format!("{p}.stiffness"),
