@@ -15,6 +15,9 @@ derivatives of the forward dynamics on real robots, and what it refuses it refus
   continuous joint's (cos, sin) is its angle, and Pinocchio's tangent is d(angle)): no offset, no
   sign. A floating base (solo12) is compared through the change of coordinates written out in
   `_floating_reference`.
+- Armature: the same robots with a rotor inertia on every joint (`armature` written into the
+  imported spec) against Pinocchio with `model.armature` set alike (its ABA and CRBA add it to
+  the joint-space inertia): A, B and xdot0 to the same 1e-9.
 - Errors: a closed loop, a step of 0 s, an unknown output extension and an unknown input are refused
   with a message naming the problem.
 """
@@ -216,6 +219,54 @@ def test_fixed_base_against_pinocchio(triad_bin, tmp_path, name, record_property
     for k, e in worst.items():
         record_property(f"linearize_{name}_{k}", f"{e:.3e}")
     assert max(worst.values()) <= TOL, worst
+
+
+def _with_armature(text, armature):
+    """The spec text with `armature = value` in each named joint's table."""
+    out = []
+    for line in text.splitlines():
+        out.append(line)
+        if line.startswith("name = ") and line[8:-1] in armature:
+            out.append(f"armature = {armature[line[8:-1]]!r}")
+    return "\n".join(out) + "\n"
+
+
+@pytest.mark.parametrize("name", ["ur5", "panda"])
+def test_armature_against_pinocchio(triad_bin, tmp_path, name, record_property):
+    urdf, model, spec, text, names = _setup(triad_bin, tmp_path, name, FIXED[name], False)
+    nv = model.nv
+    rng = _seed(name, 7)
+    arm = {t: float(rng.uniform(0.05, 0.5)) for t in names}
+    model.armature = np.zeros(nv)
+    for triad_name, urdf_name in names.items():
+        model.armature[model.joints[model.getJointId(urdf_name)].idx_v] = arm[triad_name]
+    spec.write_text(_with_armature(text, arm))
+    worst = 0.0
+    for seed in SEEDS:
+        rng = _seed(name, 10 + seed)
+        joints = ref.random_joint_state(model, rng)
+        q, v = ref.pinocchio_state(model, joints)
+        tau = _random_torque(model, q, rng)
+        out = tmp_path / f"{name}_arm_{seed}.npz"
+        _triad(triad_bin, "linearize", str(spec), *_state_args(model, names, joints, tau), "-o", str(out))
+        lin = Linearized(out)
+        iq, iv, iu = _joint_maps(model, names, lin)
+        P_q, P_v, P_u = ([m[k] for k in range(nv)] for m in (iq, iv, iu))
+        a, da_dq, da_dv, minv = _aba_reference(model, q, v, tau)
+        errs = [
+            _rel(lin.A[np.ix_(P_v, P_q)], da_dq),
+            _rel(lin.A[np.ix_(P_v, P_v)], da_dv),
+            _rel(lin.B[np.ix_(P_v, P_u)], minv),
+            _rel(lin.xdot0[P_v], a),
+        ]
+        # and the armature matters: without it the accelerations differ by far more
+        bare = pin.aba(ref.load_model(urdf, False), pin.Data(ref.load_model(urdf, False)), q, v,
+                       tau - np.asarray(model.damping) * v)
+        assert _rel(bare, a) > 1e-3
+        print(f"{name} seed {seed}: A_dq {errs[0]:.2e}, A_dv {errs[1]:.2e}, B {errs[2]:.2e}, xdot {errs[3]:.2e}")
+        worst = max(worst, *errs)
+    record_property(f"linearize_{name}_armature", f"{worst:.3e}")
+    assert worst <= TOL, worst
 
 
 # --- a floating base -----------------------------------------------------------------------
