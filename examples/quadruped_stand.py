@@ -31,7 +31,9 @@ import numpy as np
 ROOT = pathlib.Path(__file__).resolve().parent.parent
 SHARE = pathlib.Path(sysconfig.get_paths()["purelib"]) / "cmeel.prefix" / "share"
 URDF = SHARE / "example-robot-data" / "robots" / "go1_description" / "urdf" / "go1.urdf"
-IMPORT = ["--floating-base", "--contacts"]
+# the URDF's <dynamics friction> is left out: the comparison with MuJoCo (tests/python/
+# test_quadruped.py) gives MuJoCo no joint friction either
+IMPORT = ["--floating-base", "--contacts", "--no-friction"]
 
 STAND = {"hip": 0.0, "thigh": 0.8, "calf": -1.5}  # rad, each leg (joint names LEG_PART_joint)
 FEET = ("FR_foot", "FL_foot", "RR_foot", "RL_foot")

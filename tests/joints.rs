@@ -96,6 +96,7 @@ fn setup(kind: JointType, world_parent: bool, seed: u64) -> ModelDef {
         stiffness: 0.0,
         limits: Default::default(),
         armature: 0.0,
+        friction: 0.0,
 
         loop_closing: false,
         initial: random_state(kind, &mut rng),

@@ -56,6 +56,7 @@ fn model(kind: JointType) -> ModelDef {
         },
         limits: Default::default(),
         armature: 0.0,
+        friction: 0.0,
 
         loop_closing: false,
         initial: initial(s),

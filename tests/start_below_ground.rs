@@ -143,6 +143,7 @@ const ON_GROUND: ImportOptions = ImportOptions {
     base: Base::Auto,
     keep_fixed: false,
     no_limits: false,
+    no_friction: false,
     contacts: true,
     on_ground: true,
 };

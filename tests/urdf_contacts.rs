@@ -25,6 +25,7 @@ const CONTACTS: ImportOptions = ImportOptions {
     base: triad::urdf::Base::Auto,
     keep_fixed: false,
     no_limits: false,
+    no_friction: false,
     contacts: true,
     on_ground: false,
 };

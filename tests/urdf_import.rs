@@ -124,9 +124,15 @@ fn joint_trajectory(opts: &ImportOptions) -> Vec<f64> {
 /// follows the kept body.
 #[test]
 fn merged_fixed_links_move_like_kept_ones() {
-    let merged = joint_trajectory(&ImportOptions::default());
+    // without the joints' friction, whose stick–slip transitions would amplify the round-off
+    // by which the two (equal) models differ
+    let merged = joint_trajectory(&ImportOptions {
+        no_friction: true,
+        ..ImportOptions::default()
+    });
     let kept = joint_trajectory(&ImportOptions {
         keep_fixed: true,
+        no_friction: true,
         ..ImportOptions::default()
     });
     let d = merged

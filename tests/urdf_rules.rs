@@ -32,6 +32,7 @@ const KEEP: ImportOptions = ImportOptions {
     base: triad::urdf::Base::Auto,
     keep_fixed: true,
     no_limits: false,
+    no_friction: false,
     contacts: false,
     on_ground: false,
 };

@@ -24,6 +24,10 @@ pub struct ImportArgs {
     /// `effort` clamps the actuator input).
     #[arg(long)]
     pub no_limits: bool,
+    /// Leave out the URDF's <dynamics friction> (by default it becomes the joint's Coulomb
+    /// `friction`: the joint sticks below it and slides at it).
+    #[arg(long)]
+    pub no_friction: bool,
     /// Make each link's <collision> spheres, boxes and cylinders collision shapes that touch
     /// the ground (meshes are left out with a note), and add a ground plane at height 0.
     #[arg(long)]
@@ -48,6 +52,7 @@ impl ImportArgs {
             base,
             keep_fixed: self.keep_fixed,
             no_limits: self.no_limits,
+            no_friction: self.no_friction,
             contacts: self.contacts,
             on_ground: self.on_ground,
         }
@@ -61,6 +66,7 @@ impl ImportArgs {
             (self.floating_base, "--floating-base"),
             (self.keep_fixed, "--keep-fixed"),
             (self.no_limits, "--no-limits"),
+            (self.no_friction, "--no-friction"),
             (self.contacts, "--contacts"),
             (self.on_ground, "--on-ground"),
         ]

@@ -173,6 +173,7 @@ const JOINT: &[Field] = &[
     opt("damping", NUM),
     opt("stiffness", NUM),
     opt("armature", NUM),
+    opt("friction", NUM),
     opt("lower", NUM),
     opt("upper", NUM),
     opt("effort", NUM),

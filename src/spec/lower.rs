@@ -228,6 +228,7 @@ pub(crate) fn build(spec: &Spec) -> (ModelDef, SolverSettings) {
             stiffness: j.stiffness,
             limits: limits(j),
             armature: j.armature,
+            friction: j.friction,
 
             loop_closing: j.is_loop_closing(),
             initial: initial(j),

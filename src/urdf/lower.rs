@@ -396,12 +396,6 @@ pub(crate) fn spec(
                 out.renamed.push(("joint", id.clone(), j.name.clone()));
             }
             let movable = matches!(kind, JointKind::Revolute | JointKind::Prismatic);
-            if j.friction > 0.0 && kind != JointKind::Fixed {
-                out.notes.push(format!(
-                    "joint '{}': <dynamics friction> is not modelled (inactive)",
-                    j.name
-                ));
-            }
             let (lower, upper, effort) = if movable && !opts.no_limits {
                 limits(j, &mut out.notes)
             } else {
@@ -433,6 +427,13 @@ pub(crate) fn spec(
                 },
                 stiffness: 0.0,
                 armature: 0.0,
+                // <dynamics friction> as the joint's Coulomb friction (none on a fixed joint,
+                // noted above; left out with --no-friction)
+                friction: if kind == JointKind::Fixed || opts.no_friction {
+                    0.0
+                } else {
+                    j.friction
+                },
                 lower,
                 upper,
                 effort,

@@ -34,8 +34,10 @@
 //! - `--on-ground` (`on_ground`, with a floating base and `--contacts`): the base's initial
 //!   `position` is moved against gravity so that the lowest collision shape at the initial pose
 //!   rests on the ground (`on_ground`), with a note and a comment in the written TOML;
-//! - not modelled, each reported as a note: `<dynamics friction>` (inactive), `<mimic>` (the
-//!   joints are independent; a `<mimic>` of a joint that does not exist is an error);
+//! - `<dynamics friction>` becomes the joint's Coulomb `friction` (`--no-friction`,
+//!   `no_friction`: left out);
+//! - not modelled, reported as a note: `<mimic>` (the joints are independent; a `<mimic>` of a
+//!   joint that does not exist is an error);
 //! - names that are not identifiers are made identifiers deterministically (`names`), the
 //!   original name kept in the description of the element's variables.
 //!

@@ -21,6 +21,8 @@ pub struct ImportOptions {
     pub keep_fixed: bool,
     /// Leave out `<limit lower upper effort>`: no joint stops, no effort clamp.
     pub no_limits: bool,
+    /// Leave out `<dynamics friction>` (by default the joint's Coulomb `friction`).
+    pub no_friction: bool,
     /// Turn the links' `<collision>` spheres, boxes and cylinders into collision shapes
     /// (`[[collision]]`) and add a ground plane (`[ground]`, the defaults, height 0).
     pub contacts: bool,

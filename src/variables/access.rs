@@ -73,6 +73,7 @@ pub fn read_param(acc: Accessor, def: &ModelDef, settings: &SolverSettings) -> O
         Accessor::StopStiffness(j) => def.joints.get(j).map(|j| j.limits.stop_stiffness),
         Accessor::StopDamping(j) => def.joints.get(j).map(|j| j.limits.stop_damping),
         Accessor::Armature(j) => def.joints.get(j).map(|j| j.armature),
+        Accessor::Friction(j) => def.joints.get(j).map(|j| j.friction),
         Accessor::MaxStep => Some(settings.max_step),
         Accessor::Tolerance => Some(settings.tolerance),
         Accessor::Order => Some(f64::from(settings.order)),
@@ -204,6 +205,10 @@ pub fn write_param(
         Accessor::Armature(j) => {
             named("armature", ranges::non_negative(value))?;
             def.joints.get_mut(j).ok_or("no such joint")?.armature = value;
+        }
+        Accessor::Friction(j) => {
+            named("friction", ranges::non_negative(value))?;
+            def.joints.get_mut(j).ok_or("no such joint")?.friction = value;
         }
         Accessor::MaxStep => {
             named("solver.max_step", ranges::max_step(value))?;

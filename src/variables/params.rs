@@ -95,6 +95,20 @@ fn joint_parameters(b: &mut Builder, joint: usize, j: &JointDef) {
             Accessor::Armature(joint),
         );
     }
+    if j.friction > 0.0 {
+        let unit = if j.kind == JointType::Prismatic {
+            "N"
+        } else {
+            "N.m"
+        };
+        b.fixed(
+            format!("joint.{n}.friction"),
+            j.friction,
+            Some(unit),
+            format!("Coulomb friction of joint {n} on each coordinate (N.m on angles, N on slides): sticks below it, slides at it; its loss is counted in system.work"),
+            Accessor::Friction(joint),
+        );
+    }
     if j.kind != JointType::Spherical {
         let per = per.replace(".s", "");
         tunable(

@@ -200,6 +200,8 @@ pub enum Accessor {
     StopDamping(usize),
     /// `joint.J.armature` (fixed).
     Armature(usize),
+    /// `joint.J.friction` (fixed).
+    Friction(usize),
     /// `solver.max_step`.
     MaxStep,
     /// `solver.tolerance`.

@@ -135,7 +135,8 @@ def _setup(triad_bin, tmp_path, name, relative, floating):
     urdf = ref.robot_urdf(relative)
     model = ref.load_model(urdf, floating)
     spec = tmp_path / f"{name}.toml"
-    _triad(triad_bin, "import", str(urdf), "-o", str(spec), "--no-limits", *(["--floating-base"] if floating else []))
+    _triad(triad_bin, "import", str(urdf), "-o", str(spec), "--no-limits", "--no-friction",
+           *(["--floating-base"] if floating else []))
     text = spec.read_text()
     names = ref.urdf_names(text)["joint"]  # triad joint name -> URDF joint name
     assert set(names.values()) == {n for n, _ in ref.moving_joints(model)}
@@ -197,7 +198,8 @@ def test_fixed_base_against_pinocchio(triad_bin, tmp_path, name, record_property
         q, v = ref.pinocchio_state(model, joints)
         tau = _random_torque(model, q, rng)
         out = tmp_path / f"{name}_{seed}.npz"
-        _triad(triad_bin, "linearize", str(urdf), "--no-limits", *_state_args(model, names, joints, tau), "-o", str(out))
+        _triad(triad_bin, "linearize", str(urdf), "--no-limits", "--no-friction",
+               *_state_args(model, names, joints, tau), "-o", str(out))
         lin = Linearized(out)
         iq, iv, iu = _joint_maps(model, names, lin)
         P_q = [iq[k] for k in range(nv)]

@@ -54,13 +54,14 @@ impl Model {
             }
         }
         for jd in &def.joints {
-            let a = jd.armature;
             let bad_kind = matches!(jd.kind, JointType::Spherical | JointType::Fixed);
-            if !(a.is_finite() && a >= 0.0) || (a > 0.0 && (bad_kind || jd.loop_closing)) {
-                return Err(ModelError::Invalid(format!(
-                    "joint '{}': armature must be finite and >= 0, and only on the coordinates of a tree joint that is not spherical or fixed (got {a})",
-                    jd.name
-                )));
+            for (what, a) in [("armature", jd.armature), ("friction", jd.friction)] {
+                if !(a.is_finite() && a >= 0.0) || (a > 0.0 && (bad_kind || jd.loop_closing)) {
+                    return Err(ModelError::Invalid(format!(
+                        "joint '{}': {what} must be finite and >= 0, and only on the coordinates of a tree joint that is not spherical or fixed (got {a})",
+                        jd.name
+                    )));
+                }
             }
         }
         let mut body_torques = Vec::new();
@@ -120,6 +121,7 @@ impl Model {
             nrows: 0,
             nturn: 0,
             narm: 0,
+            nfric: 0,
             dense: false,
             reduced: false,
             exact_reduced: false,
@@ -241,6 +243,7 @@ pub(crate) fn build(model: &mut Model, joint_input: &[Option<usize>]) -> Result<
     let mut turn0 = 0;
     let mut angles0 = Vec::new();
     let mut arm0 = 0;
+    let mut fric0 = 0;
     for (j, (jd, g)) in def.joints.iter().zip(geoms).enumerate() {
         let mut rows = Vec::new();
         let mut dropped = Vec::new();
@@ -323,9 +326,15 @@ pub(crate) fn build(model: &mut Model, joint_input: &[Option<usize>]) -> Result<
             },
             armature: if spherical { 0.0 } else { jd.armature },
             arm0,
+            friction: (!spherical && jd.friction > 0.0)
+                .then_some(super::joint_friction::JointFriction { limit: jd.friction }),
+            fric0,
         });
         if !spherical && jd.armature > 0.0 {
             arm0 += dofs_len;
+        }
+        if !spherical && jd.friction > 0.0 {
+            fric0 += dofs_len;
         }
         row0 += nrow;
         turn0 += nturn;
@@ -333,6 +342,7 @@ pub(crate) fn build(model: &mut Model, joint_input: &[Option<usize>]) -> Result<
     model.nrows = row0;
     model.nturn = turn0;
     model.narm = arm0;
+    model.nfric = fric0;
     model.angles0 = angles0;
     // loop-closing joints (`tree.loop_joints`) form the border of the tree solve (`border`);
     // the dense LU is only the test oracle (`Model::set_dense_solver`)

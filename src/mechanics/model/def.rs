@@ -171,6 +171,10 @@ pub struct JointDef {
     /// kinetic energy per coordinate, as MuJoCo's `armature` and Pinocchio's `model.armature`
     /// (not for spherical or fixed joints).
     pub armature: f64,
+    /// Coulomb friction on each coordinate, N·m or N (≥ 0): a bristle that sticks below
+    /// breakaway (`model::joint_friction`), its loss counted in the work (not for spherical,
+    /// fixed or loop-closing joints).
+    pub friction: f64,
     /// Position stops and actuator effort limit (revolute and prismatic joints).
     pub limits: JointLimits,
     /// True for a joint that closes a kinematic loop (its child already has a tree parent).

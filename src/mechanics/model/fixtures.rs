@@ -37,6 +37,7 @@ fn revolute(parent: Option<usize>, child: usize, at: Vec3, axis: Vec3, q: f64) -
         stiffness: 0.0,
         limits: Default::default(),
         armature: 0.0,
+        friction: 0.0,
 
         loop_closing: false,
         initial: JointInitial::Coords {

@@ -40,6 +40,7 @@ fn degenerate_axes_are_rejected() {
         stiffness: 0.0,
         limits: Default::default(),
         armature: 0.0,
+        friction: 0.0,
 
         loop_closing: false,
         initial: Default::default(),

@@ -24,6 +24,7 @@ fn model(joints: &[(Option<usize>, usize, bool)], free: &[usize]) -> ModelDef {
             stiffness: 0.0,
             limits: Default::default(),
             armature: 0.0,
+            friction: 0.0,
 
             loop_closing,
             initial: Default::default(),

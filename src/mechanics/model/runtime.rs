@@ -128,6 +128,10 @@ pub(crate) struct JointRt {
     /// Offset of this joint's rotor rates in the state's `arm` (one per dof when `armature`
     /// is set).
     pub arm0: usize,
+    /// Coulomb friction on each coordinate of `dofs`, if any.
+    pub friction: Option<super::joint_friction::JointFriction>,
+    /// Offset of this joint's friction bristles in the state's `fric` (one per dof).
+    pub fric0: usize,
 }
 
 /// A built, immutable multibody model.
@@ -151,6 +155,8 @@ pub struct Model {
     pub(crate) nturn: usize,
     /// Number of joint coordinates with a rotor inertia (the state's rotor rates).
     pub(crate) narm: usize,
+    /// Number of joint coordinates with friction (the state's friction bristles).
+    pub(crate) nfric: usize,
     /// Use the dense LU over all unknowns (O(N³)) instead of the tree solve (bordered for loops):
     /// the test oracle only, false as built (see [`Model::set_dense_solver`]).
     pub(crate) dense: bool,

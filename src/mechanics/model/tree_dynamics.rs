@@ -166,6 +166,8 @@ pub enum Unsupported {
     Loop(String),
     /// The model has collision shapes.
     Contact,
+    /// A joint has Coulomb friction.
+    Friction(String),
 }
 
 impl std::fmt::Display for Unsupported {
@@ -173,12 +175,13 @@ impl std::fmt::Display for Unsupported {
         match self {
             Self::Loop(j) => write!(f, "joint '{j}' closes a kinematic loop; linear models of closed loops are not available yet"),
             Self::Contact => write!(f, "the model has collision shapes; linear models with contact are not available yet (build it without contacts, e.g. `--no-contacts` or without [[collision]])"),
+            Self::Friction(j) => write!(f, "joint '{j}' has Coulomb friction, which has no derivative where the joint sticks; linearise without it (`--set joint.{j}.friction=0`)"),
         }
     }
 }
 
 /// Whether `def` has a minimal-coordinate dynamics here: a tree (no loop-closing joint) without
-/// collision shapes.
+/// collision shapes or joint friction.
 ///
 /// # Errors
 /// [`Unsupported`] naming the first obstacle.
@@ -188,6 +191,9 @@ pub fn supported(def: &ModelDef) -> Result<(), Unsupported> {
     }
     if !def.contact.shapes.is_empty() {
         return Err(Unsupported::Contact);
+    }
+    if let Some(j) = def.joints.iter().find(|j| j.friction > 0.0) {
+        return Err(Unsupported::Friction(j.name.clone()));
     }
     Ok(())
 }

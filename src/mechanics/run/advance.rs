@@ -125,6 +125,7 @@ fn compose_from(
     ws.ang.copy_from_slice(&state.angles);
     ws.bristle.copy_from_slice(&state.bristle);
     ws.arm.copy_from_slice(&state.arm);
+    ws.fric.copy_from_slice(&state.fric);
     ws.work = state.work;
     ws.hist.copy_from_slice(&state.hist);
     ws.hprev = state.hprev;
@@ -156,6 +157,7 @@ fn commit(state: &mut State, h: f64, stats: &StepStats) {
     std::mem::swap(&mut state.angles, &mut ws.ang);
     std::mem::swap(&mut state.bristle, &mut ws.bristle);
     std::mem::swap(&mut state.arm, &mut ws.arm);
+    std::mem::swap(&mut state.fric, &mut ws.fric);
     state.work = ws.work;
     std::mem::swap(&mut state.hist, &mut ws.hist);
     state.hprev = ws.hprev;

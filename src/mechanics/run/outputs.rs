@@ -130,7 +130,7 @@ impl Outputs {
 ///
 /// `v` are the nodal velocities `vₙ` of the scheme (12 per body, world frame): the energy
 /// `½ vₙᵀ M vₙ + Σ ½ a ω² + V` (the conserved discrete energy; `arm` the rotor rates `ω` of the
-/// coordinates with an armature `a`), `p` and `L` come from them. `vp` are their
+/// coordinates with an armature `a`; `V` includes the joint friction bristles' `½ k s²`, `fric`), `p` and `L` come from them. `vp` are their
 /// M-orthogonal projection onto the admissible velocities at `q` (`projection.rs`, same layout):
 /// the body velocities `v`, `w` and the joint rates come from `vp`, so that they satisfy the
 /// velocity constraints to round-off.
@@ -144,6 +144,7 @@ pub(crate) fn update(
     stiffness: &[f64],
     bristle: &[f64],
     arm: &[f64],
+    fric: &[f64],
     work: f64,
     out: &mut Outputs,
 ) {
@@ -195,6 +196,10 @@ pub(crate) fn update(
             if jt.armature > 0.0 {
                 let w = arm[jt.arm0 + dk];
                 energy += 0.5 * jt.armature * w * w;
+            }
+            // the friction bristle's ½ k s²
+            if let Some(fr) = &jt.friction {
+                energy += fr.energy(fric[jt.fric0 + dk]);
             }
             match dof {
                 DofRt::Slide(row) => {

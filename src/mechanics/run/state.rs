@@ -34,6 +34,8 @@ pub struct State {
     /// Rotor rates of the joint coordinates with an armature (`JointRt::arm0`), rad/s or m/s:
     /// the rotor's own velocity, carried as the nodal velocities are (`v_{n+1} = 2Δ/h − vₙ`).
     pub(crate) arm: Vec<f64>,
+    /// Deflections of the joint friction bristles (`JointRt::fric0`), rad or m.
+    pub(crate) fric: Vec<f64>,
     /// Predictor history: difference tables of the stages' mean rates (see `Work::hist`).
     pub(crate) hist: Vec<f64>,
     /// Sizes of the stages of each table, newest first, s (0: none).
@@ -81,6 +83,7 @@ impl State {
             order2: (0, None),
             bristle: vec![0.0; 3 * model.contact.bristles()],
             arm: vec![0.0; model.narm],
+            fric: vec![0.0; model.nfric],
             ws: Work::new(model),
             pw: ProjWork::new(model),
         };
@@ -116,6 +119,7 @@ impl State {
             &self.stiffness,
             &self.bristle,
             &self.arm,
+            &self.fric,
             self.work,
             &mut self.outputs,
         );
@@ -217,6 +221,7 @@ impl State {
         self.work = src.work;
         self.bristle.clone_from(&src.bristle);
         self.arm.clone_from(&src.arm);
+        self.fric.clone_from(&src.fric);
         self.hist.clone_from(&src.hist);
         self.hprev = src.hprev;
         self.memory = src.memory;
@@ -254,7 +259,7 @@ impl State {
 
     /// Every number that determines the future of this state (time, q, v, multipliers used as
     /// the Newton start, inputs, tunable parameters, accumulated work, unwrapping memory), flat:
-    /// `[t, lag, q.., v.., v_lo.., λ/2.., angles.., work, hist.., h_prev.., memory (3), inputs.., damping.., stiffness.., bristles.., rotor rates.., step control..]`.
+    /// `[t, lag, q.., v.., v_lo.., λ/2.., angles.., work, hist.., h_prev.., memory (3), inputs.., damping.., stiffness.., bristles.., rotor rates.., joint friction bristles.., step control..]`.
     #[must_use]
     pub fn snapshot(&self) -> Vec<f64> {
         let mut out = Vec::with_capacity(self.snapshot_len());
@@ -274,6 +279,7 @@ impl State {
         out.extend_from_slice(&self.stiffness);
         out.extend_from_slice(&self.bristle);
         out.extend_from_slice(&self.arm);
+        out.extend_from_slice(&self.fric);
         self.ctrl.write_f64(&mut out);
         out
     }
@@ -291,6 +297,7 @@ impl State {
             + self.stiffness.len()
             + self.bristle.len()
             + self.arm.len()
+            + self.fric.len()
             + self.ctrl.snapshot_len()
     }
 
@@ -331,6 +338,7 @@ impl State {
         take(&mut self.stiffness);
         take(&mut self.bristle);
         take(&mut self.arm);
+        take(&mut self.fric);
         self.ctrl.read_f64(&data[at..])?;
         self.t = t[0];
         self.lag = t[1];

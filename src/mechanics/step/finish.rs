@@ -8,6 +8,7 @@
 //!         − c_stop p̄ Δϑ²/h …)                (τ, F clamped to ±effort)
 //! ϑ_{n+1} = ϑₙ + Δϑ                          (unwrapped joint angles)
 //! ω_{n+1} = 2Δϑ/h − ωₙ                        (rotor rates of joints with an armature)
+//! s_{n+1}, D                                 (joint friction bristles and their loss, in W)
 //! ```
 //!
 //! The work terms are the exact discrete work of the loads as they enter the residual (the
@@ -67,17 +68,26 @@ pub(crate) fn finish(model: &Model, ws: &mut Work, held: &Held, h: f64) -> f64 {
                 .map_or(0.0, |i| actuator_input(dk, held.inputs, i, jt.effort));
             // the rotor's rate at the end: ω₁ = 2Δ/h − ω₀ (with Δ as the residual took it)
             let arm = (jt.armature > 0.0).then_some(jt.arm0 + dk);
+            // the friction bristle's end and loss, with the increment the residual took
+            let fric = jt.friction.as_ref().map(|fr| (fr, jt.fric0 + dk));
             match dof {
                 DofRt::Slide(row) => {
                     let s0 = row.eval(&node(&ws.qn, a), &node(&ws.qn, Some(bb)));
                     let s1 = row.eval(&node(&ws.q, a), &node(&ws.q, Some(bb)));
                     let ds = s1 - s0;
-                    if let Some(i) = arm {
+                    if arm.is_some() || fric.is_some() {
                         // Δ as the residual took it (`joint_loads`: from the increments)
                         let (qa_bar, qb_bar) = (node(&ws.qbar, a), node(&ws.qbar, Some(bb)));
                         let (dqa, dqb) = (node(&ws.dq, a), node(&ws.dq, Some(bb)));
                         let dsr = row_increment(row, &qa_bar, &qb_bar, &dqa, &dqb);
-                        ws.arm1[i] = 2.0 * dsr / h - ws.arm[i];
+                        if let Some(i) = arm {
+                            ws.arm1[i] = 2.0 * dsr / h - ws.arm[i];
+                        }
+                        if let Some((fr, i)) = fric {
+                            let st = fr.step(ws.fric[i], dsr, h);
+                            ws.fric1[i] = st.s1;
+                            gained -= st.loss;
+                        }
                     }
                     work += act * ds;
                     gained -= c_d * ds * ds / h + jt.stops.map_or(0.0, |st| st.loss(s0, ds, h));
@@ -88,7 +98,12 @@ pub(crate) fn finish(model: &Model, ws: &mut Work, held: &Held, h: f64) -> f64 {
                         work += act * nbar.dot(&th_rel());
                     }
                     let t0 = ws.ang[turn];
-                    if k_s != 0.0 || c_d != 0.0 || jt.stops.is_some() || arm.is_some() {
+                    if k_s != 0.0
+                        || c_d != 0.0
+                        || jt.stops.is_some()
+                        || arm.is_some()
+                        || fric.is_some()
+                    {
                         let (qa_n, qb_n) = (node(&ws.qn, a), node(&ws.qn, Some(bb)));
                         let (qa_bar, qb_bar) = (node(&ws.qbar, a), node(&ws.qbar, Some(bb)));
                         let (dqa, dqb) = (node(&ws.dq, a), node(&ws.dq, Some(bb)));
@@ -97,10 +112,16 @@ pub(crate) fn finish(model: &Model, ws: &mut Work, held: &Held, h: f64) -> f64 {
                         let dc = row_increment(&tr.cos, &qa_bar, &qb_bar, &dqa, &dqb);
                         let stops = jt.stops.as_ref();
                         let rotor = arm.map_or([0.0; 2], |i| [jt.armature, ws.arm[i]]);
-                        let st = turn_step([s0, c0], [ds, dc], t0, k_s, c_d, stops, rotor, h);
+                        let fr0 = fric.map(|(fr, i)| (fr, ws.fric[i]));
+                        let st = turn_step([s0, c0], [ds, dc], t0, k_s, c_d, stops, rotor, fr0, h);
                         ws.ang1[turn] = t0 + st.dt;
                         if let Some(i) = arm {
                             ws.arm1[i] = 2.0 * st.dt / h - ws.arm[i];
+                        }
+                        if let Some((fr, i)) = fric {
+                            let fs = fr.step(ws.fric[i], st.dt, h);
+                            ws.fric1[i] = fs.s1;
+                            gained -= fs.loss;
                         }
                         gained -=
                             c_d * st.dt * st.dt / h + stops.map_or(0.0, |s| s.loss(t0, st.dt, h));

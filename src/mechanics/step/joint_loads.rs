@@ -128,6 +128,7 @@ pub(crate) fn loaded(model: &Model, held: &Held, j: usize) -> bool {
         || held.stiffness[j] != 0.0
         || held.damping[j] != 0.0
         || jt.armature != 0.0
+        || jt.friction.is_some()
 }
 
 /// Adds the loads of joint `j` (stage size `h`, s) at the pair's iterate to `acc` (and the
@@ -189,6 +190,8 @@ pub(crate) fn joint_loads(
         } else {
             [0.0; 2]
         };
+        // friction and its bristle's deflection at the stage start
+        let fric = jt.friction.as_ref().map(|fr| (fr, ws.fric[jt.fric0 + dk]));
         match dof {
             DofRt::Slide(row) => {
                 let qa_n = a.map_or(zero, |a| body_nodes(&ws.qn, a));
@@ -200,16 +203,20 @@ pub(crate) fn joint_loads(
                 let rotor = 2.0 * arm[0] / (h * h);
                 // the rotor's Δ − hω is O(h²): Δ from the increments, without the
                 // cancellation of s₁ − s₀
-                let f_rotor = if rotor == 0.0 {
-                    0.0
-                } else {
+                let (mut f_rotor, mut f_fric, mut df_fric) = (0.0, 0.0, 0.0);
+                if rotor != 0.0 || fric.is_some() {
                     let dqa = a.map_or(zero, |a| body_nodes(&ws.dq, a));
                     let dqb = body_nodes(&ws.dq, bb);
                     let dsr = row_increment(row, qa_bar, qb_bar, &dqa, &dqb);
-                    rotor * (dsr - h * arm[1])
-                };
-                let coef = act - 0.5 * k_s * (s0 + s1) - c_d * ds / h + f_stop - f_rotor;
-                let stiff = k_s != 0.0 || c_d != 0.0 || df_stop != 0.0 || rotor != 0.0;
+                    f_rotor = rotor * (dsr - h * arm[1]);
+                    if let Some((fr, s_0)) = fric {
+                        let st = fr.step(s_0, dsr, h);
+                        (f_fric, df_fric) = (st.force, st.dforce);
+                    }
+                }
+                let coef = act - 0.5 * k_s * (s0 + s1) - c_d * ds / h + f_stop - f_rotor + f_fric;
+                let stiff =
+                    k_s != 0.0 || c_d != 0.0 || df_stop != 0.0 || rotor != 0.0 || fric.is_some();
                 if coef == 0.0 && !stiff {
                     // idle, or stops that neither end of the step has reached
                     continue;
@@ -217,7 +224,7 @@ pub(crate) fn joint_loads(
                 let grad = add_row(row, -hh * coef, fa, fb, &mut ws.cbody, cab);
                 if jac && stiff {
                     // rank-one term d(−hh·coef)/dx = hh (k/2 + c/h − ∂f_stop/∂s₁) ∇s(q) Q
-                    let kap = hh * (0.5 * k_s + c_d / h + rotor - df_stop);
+                    let kap = hh * (0.5 * k_s + c_d / h + rotor - df_stop - df_fric);
                     let mut g1 = [Vec3::zeros(); 8];
                     row.gradient(qa, qb, &mut g1);
                     let cb_ = project(&grad[4..], dbar_b);
@@ -247,7 +254,11 @@ pub(crate) fn joint_loads(
                 // the angle step, and the spring and damper as the discrete gradient
                 // F = f β (c̄ ∇s(q̄) − s̄ ∇c(q̄)) of `turn`
                 let t0 = ws.ang[turn];
-                let loaded = k_s != 0.0 || c_d != 0.0 || jt.stops.is_some() || arm[0] != 0.0;
+                let loaded = k_s != 0.0
+                    || c_d != 0.0
+                    || jt.stops.is_some()
+                    || arm[0] != 0.0
+                    || fric.is_some();
                 if loaded {
                     let dqa = a.map_or(zero, |a| body_nodes(&ws.dq, a));
                     let dqb = body_nodes(&ws.dq, bb);
@@ -257,7 +268,7 @@ pub(crate) fn joint_loads(
                     let ds = row_increment(&tr.sin, qa_bar, qb_bar, &dqa, &dqb);
                     let dc = row_increment(&tr.cos, qa_bar, qb_bar, &dqa, &dqb);
                     let stops = jt.stops.as_ref();
-                    let st = turn_step([s0, c0], [ds, dc], t0, k_s, c_d, stops, arm, h);
+                    let st = turn_step([s0, c0], [ds, dc], t0, k_s, c_d, stops, arm, fric, h);
                     if st.fs == 0.0 && st.fc == 0.0 && st.jac == [0.0; 4] {
                         // stops that neither end of the step has reached, and nothing else
                         turn += 1;

@@ -12,7 +12,7 @@
 //!   account, unwrapped angles), `momentum` (bodies in contact: the momenta exact at any
 //!   tolerance), `identity` (the spurious roots a converged stage is refused for),
 //!   `stage` (a robust stage, the order-4 composition), `tangent` (the step's exact tangent map,
-//!   carried through a run), `error`.
+//!   carried through a run; its columns in `tangent_state`), `error`.
 //!
 //! Uses: `model`, `linalg` and `crate::math`; never `run`.
 
@@ -31,5 +31,6 @@ pub(crate) mod predictor;
 pub(crate) mod reduced;
 pub(crate) mod stage;
 pub(crate) mod tangent;
+pub(crate) mod tangent_state;
 pub(crate) mod turn;
 pub(crate) mod work;

@@ -42,6 +42,7 @@ fn joint(
         stiffness: 0.0,
         limits: Default::default(),
         armature: 0.0,
+        friction: 0.0,
 
         loop_closing: false,
         initial: JointInitial::Coords { q, qd },

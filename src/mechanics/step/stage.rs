@@ -148,7 +148,7 @@ pub(crate) fn compose(
             || model
                 .joints
                 .iter()
-                .any(|j| j.stops.is_some_and(|s| s.damping != 0.0)));
+                .any(|j| j.stops.is_some_and(|s| s.damping != 0.0) || j.friction.is_some()));
     let kinetic0 = if guard { kinetic(model, &ws.vn) } else { 0.0 };
     for (k, &g) in stages.iter().enumerate() {
         let table = if order4 { 1 + k } else { 0 };
@@ -349,6 +349,7 @@ fn stage(
     }
     ws.ang.copy_from_slice(&ws.ang1);
     ws.arm.copy_from_slice(&ws.arm1);
+    ws.fric.copy_from_slice(&ws.fric1);
     ws.work += work;
     record(ws, nb, h, table);
     Ok(StepStats {

@@ -34,96 +34,13 @@
 
 use super::error::StepError;
 use super::newton::{evaluate, resolve, solve, stage_rates, Held, Mode, Work};
+pub use super::tangent_state::Tangent;
 use crate::math::Vec3;
 use crate::mechanics::linalg::tree::NMAX;
 use crate::mechanics::model::constraint::{body_nodes, read3, LinVec};
 use crate::mechanics::model::runtime::Model;
 
-/// Perturbation columns of a run's state (module docs), and their value at the start of the
-/// step in progress (a rejected or redone step starts again from there).
-#[derive(Clone, Debug)]
-pub struct Tangent {
-    /// Number of columns.
-    cols: usize,
-    /// Twist increments `(δφ, δθ)`, 6 per body, per column (column-major), m and rad.
-    xi: Vec<f64>,
-    /// Nodal velocity perturbations, 12 per body, per column, m/s and 1/s.
-    dv: Vec<f64>,
-    /// Input perturbations, one per model input, per column.
-    du: Vec<f64>,
-    /// `xi`, `dv` at the start of the step in progress.
-    start: (Vec<f64>, Vec<f64>),
-    /// The model with its stop dampers negated, when it has any (the swapped evaluation).
-    mirror: Option<Box<Model>>,
-}
-
 impl Tangent {
-    /// Columns `xi` (6 per body each), `dv` (12 per body each) and `du` (one per model input
-    /// each), column-major, for `model`.
-    ///
-    /// # Panics
-    /// When the lengths do not match `cols` columns of `model`.
-    #[must_use]
-    pub fn new(model: &Model, cols: usize, xi: Vec<f64>, dv: Vec<f64>, du: Vec<f64>) -> Self {
-        let nb = model.bodies.len();
-        assert_eq!(xi.len(), 6 * nb * cols, "tangent: xi length");
-        assert_eq!(dv.len(), 12 * nb * cols, "tangent: dv length");
-        assert_eq!(du.len(), model.inputs.len() * cols, "tangent: du length");
-        let damped_stops = model
-            .joints
-            .iter()
-            .any(|j| j.stops.is_some_and(|s| s.damping != 0.0));
-        let mirror = damped_stops.then(|| {
-            let mut m = model.clone();
-            for j in &mut m.joints {
-                if let Some(s) = &mut j.stops {
-                    s.damping = -s.damping;
-                }
-            }
-            Box::new(m)
-        });
-        Self {
-            cols,
-            start: (xi.clone(), dv.clone()),
-            xi,
-            dv,
-            du,
-            mirror,
-        }
-    }
-
-    /// Number of columns.
-    #[must_use]
-    pub fn cols(&self) -> usize {
-        self.cols
-    }
-
-    /// Column `c`'s twist increments (6 per body).
-    #[must_use]
-    pub fn xi(&self, c: usize) -> &[f64] {
-        let n = self.xi.len() / self.cols.max(1);
-        &self.xi[c * n..(c + 1) * n]
-    }
-
-    /// Column `c`'s nodal velocity perturbation (12 per body).
-    #[must_use]
-    pub fn dv(&self, c: usize) -> &[f64] {
-        let n = self.dv.len() / self.cols.max(1);
-        &self.dv[c * n..(c + 1) * n]
-    }
-
-    /// Back to the start of the step in progress.
-    pub(crate) fn rewind(&mut self) {
-        self.xi.copy_from_slice(&self.start.0);
-        self.dv.copy_from_slice(&self.start.1);
-    }
-
-    /// The step in progress is committed: its end is the next step's start.
-    pub(crate) fn accept(&mut self) {
-        self.start.0.copy_from_slice(&self.xi);
-        self.start.1.copy_from_slice(&self.dv);
-    }
-
     /// Carries the columns through the stage of size `h` that converged in `ws` (start `ws.qn`,
     /// `ws.vn`, end `ws.q`; called before the workspace moves to the end), module formulas.
     ///

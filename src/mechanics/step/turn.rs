@@ -31,6 +31,7 @@
 use crate::math::{skew, Mat3, Vec3};
 use crate::mechanics::model::constraint::DotRow;
 use crate::mechanics::model::constraint::LinVec;
+use crate::mechanics::model::joint_friction::JointFriction;
 use crate::mechanics::model::stops::Stops;
 
 /// `β = atan2(X, Y)/X` and its partial derivatives `(β, ∂β/∂X, ∂β/∂Y)`; by the series of
@@ -69,8 +70,8 @@ pub(crate) struct TurnStep {
 /// The angle step from `[s₀, c₀]` with increments `[Δs, Δc]`, and the spring (stiffness `k`,
 /// N·m/rad, about angle 0), damper (`c_d`, N·m·s/rad), stop (`model::stops`) and rotor
 /// (`[a, ω₀]`: armature, kg·m², and the rotor's rate at the stage start, rad/s; the load
-/// `−(2a/h²)(Δt − h ω₀)`, module docs) load for the start angle `t0` (rad) and stage size `h`
-/// (s).
+/// `−(2a/h²)(Δt − h ω₀)`, module docs) and friction (`model::joint_friction` with its bristle's
+/// deflection at the stage start) load for the start angle `t0` (rad) and stage size `h` (s).
 #[must_use]
 #[allow(clippy::too_many_arguments)]
 pub(crate) fn turn_step(
@@ -81,6 +82,7 @@ pub(crate) fn turn_step(
     c_d: f64,
     stops: Option<&Stops>,
     [a, w0]: [f64; 2],
+    fric: Option<(&JointFriction, f64)>,
     h: f64,
 ) -> TurnStep {
     let x = c0 * ds - s0 * dc;
@@ -88,7 +90,7 @@ pub(crate) fn turn_step(
     let y = c0 * c1 + s0 * s1;
     let (b, bx, by) = beta(x, y);
     let dt = b * x;
-    if k == 0.0 && c_d == 0.0 && stops.is_none() && a == 0.0 {
+    if k == 0.0 && c_d == 0.0 && stops.is_none() && a == 0.0 && fric.is_none() {
         return TurnStep {
             dt,
             ..TurnStep::default()
@@ -96,13 +98,17 @@ pub(crate) fn turn_step(
     }
     let (f_stop, df_stop) = stops.map_or((0.0, 0.0), |st| st.force(t0, dt, h));
     let rotor = 2.0 * a / (h * h);
-    let f = -k * (t0 + 0.5 * dt) - c_d * dt / h + f_stop - rotor * (dt - h * w0);
+    let (f_fric, df_fric) = fric.map_or((0.0, 0.0), |(fr, s0)| {
+        let st = fr.step(s0, dt, h);
+        (st.force, st.dforce)
+    });
+    let f = -k * (t0 + 0.5 * dt) - c_d * dt / h + f_stop - rotor * (dt - h * w0) + f_fric;
     let (sb, cb) = (s0 + 0.5 * ds, c0 + 0.5 * dc);
     // ∂X/∂(s₁, c₁) = (c₀, −s₀), ∂Y/∂(s₁, c₁) = (s₀, c₀)
     let r = x * x + y * y;
     let ddt = [(y * c0 - x * s0) / r, (-y * s0 - x * c0) / r];
     let db = [bx * c0 + by * s0, -bx * s0 + by * c0];
-    let df = -(0.5 * k + c_d / h + rotor) + df_stop;
+    let df = -(0.5 * k + c_d / h + rotor) + df_stop + df_fric;
     let fb = f * b;
     let mut jac = [0.0; 4];
     for v in 0..2 {
@@ -211,15 +217,20 @@ mod tests {
             let (s0, c0) = (t0.sin(), t0.cos());
             let t1: f64 = t0 + dt_true;
             let (ds, dc) = (t1.sin() - s0, t1.cos() - c0);
-            let st = turn_step([s0, c0], [ds, dc], t0, k, c, None, [ar, w0], h);
+            let fr = JointFriction { limit: 0.4 };
+            let fric = Some((&fr, 3e-5));
+            let st = turn_step([s0, c0], [ds, dc], t0, k, c, None, [ar, w0], fric, h);
             assert!((st.dt - dt_true).abs() <= 1e-15 * (1.0 + t0.abs()) + 1e-12 * dt_true.abs());
             // F·Δq = fs Δs + fc Δc = −½k(t₁² − t₀²) − c Δt²/h − ½a(ω₁² − ω₀²)
             let w = st.fs * ds + st.fc * dc;
             let tt = t0 + st.dt;
             let w1 = 2.0 * st.dt / h - w0;
+            let fs = fr.step(3e-5, st.dt, h);
             let expected = -0.5 * k * (tt * tt - t0 * t0)
                 - c * st.dt * st.dt / h
-                - 0.5 * ar * (w1 * w1 - w0 * w0);
+                - 0.5 * ar * (w1 * w1 - w0 * w0)
+                - (fr.energy(fs.s1) - fr.energy(3e-5))
+                - fs.loss;
             assert!(
                 (w - expected).abs() <= 1e-12 * (1.0 + expected.abs()),
                 "{w} {expected}"
@@ -228,8 +239,28 @@ mod tests {
             let e = 1e-7;
             for v in 0..2 {
                 let (a, b) = if v == 0 { (e, 0.0) } else { (0.0, e) };
-                let p = turn_step([s0, c0], [ds + a, dc + b], t0, k, c, None, [ar, w0], h);
-                let m = turn_step([s0, c0], [ds - a, dc - b], t0, k, c, None, [ar, w0], h);
+                let p = turn_step(
+                    [s0, c0],
+                    [ds + a, dc + b],
+                    t0,
+                    k,
+                    c,
+                    None,
+                    [ar, w0],
+                    fric,
+                    h,
+                );
+                let m = turn_step(
+                    [s0, c0],
+                    [ds - a, dc - b],
+                    t0,
+                    k,
+                    c,
+                    None,
+                    [ar, w0],
+                    fric,
+                    h,
+                );
                 let fs = (p.fs - m.fs) / (2.0 * e);
                 let fc = (p.fc - m.fc) / (2.0 * e);
                 assert!(

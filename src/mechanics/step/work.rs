@@ -1,7 +1,7 @@
 //! The preallocated Newton workspace of a step and the loads held over it.
 
 use super::reduced::work::RedWork;
-use super::tangent::Tangent;
+use super::tangent_state::Tangent;
 use crate::mechanics::linalg::border::Border;
 use crate::mechanics::linalg::tree::Block;
 use crate::mechanics::model::runtime::Model;
@@ -106,6 +106,10 @@ pub(crate) struct Work {
     pub arm: Vec<f64>,
     /// Rotor rates at the iterate's end of the stage (`finish`).
     pub arm1: Vec<f64>,
+    /// Joint friction bristles at the stage start (`State::fric`), rad or m.
+    pub fric: Vec<f64>,
+    /// Joint friction bristles at the stage's end (`finish`).
+    pub fric1: Vec<f64>,
     /// Accumulated work at the stage start, J.
     pub work: f64,
     /// Per joint, the energy its dampers (viscous and stop) took over the stages of the
@@ -211,6 +215,8 @@ impl Work {
             ang: model.angles0.clone(),
             arm: vec![0.0; model.narm],
             arm1: vec![0.0; model.narm],
+            fric: vec![0.0; model.nfric],
+            fric1: vec![0.0; model.nfric],
             work: 0.0,
             loss: vec![0.0; model.joints.len()],
             contact_loss: 0.0,

@@ -92,21 +92,26 @@ fn fields(report: &mut Report, p: &str, j: &JointSpec) {
             );
         }
     }
-    if let Err(e) = ranges::non_negative(j.armature) {
-        report.push(format!("{p}.armature"), e);
-    } else if j.armature > 0.0 && j.is_loop_closing() {
-        report.push(
-            format!("{p}.armature"),
-            "a loop-closing joint takes no armature (its coordinate is not free: put the rotor inertia on a tree joint of the loop)",
-        );
-    } else if j.armature > 0.0 && matches!(j.kind, JointKind::Fixed | JointKind::Spherical) {
-        report.push(
-            format!("{p}.armature"),
-            format!(
-                "{} joints take no armature (rotor inertia acts on a joint coordinate: revolute, prismatic, cylindrical, universal or planar)",
-                kind_name(j.kind)
-            ),
-        );
+    for (field, v, what) in [
+        ("armature", j.armature, "armature (rotor inertia acts"),
+        ("friction", j.friction, "friction (joint friction acts"),
+    ] {
+        if let Err(e) = ranges::non_negative(v) {
+            report.push(format!("{p}.{field}"), e);
+        } else if v > 0.0 && j.is_loop_closing() {
+            report.push(
+                format!("{p}.{field}"),
+                format!("a loop-closing joint takes no {field} (its coordinate is not free: put it on a tree joint of the loop)"),
+            );
+        } else if v > 0.0 && matches!(j.kind, JointKind::Fixed | JointKind::Spherical) {
+            report.push(
+                format!("{p}.{field}"),
+                format!(
+                    "{} joints take no {what} on a joint coordinate: revolute, prismatic, cylindrical, universal or planar)",
+                    kind_name(j.kind)
+                ),
+            );
+        }
     }
     if j.stiffness != 0.0 && j.kind == JointKind::Spherical {
         report.push(
