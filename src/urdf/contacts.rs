@@ -17,8 +17,8 @@
 //!   added when the spec has none.
 
 use super::mass::{Iso, Placement};
-use super::names::Namer;
 use super::robot::{Geometry, Robot};
+use crate::import::names::Namer;
 use crate::mechanics::ContactLaw;
 use crate::spec::{BoxShape, CollisionSpec, GroundSpec, RoundShape, Spec, SphereShape};
 

@@ -10,9 +10,9 @@
 use std::collections::HashMap;
 
 use super::mass::{clean, distribute, merge, Iso, Parts, Placement};
-use super::names::Namer;
 use super::options::{Base, ImportOptions};
 use super::robot::{at, Geometry, JointType, Robot, Shape};
+use crate::import::names::Namer;
 use crate::math::{rpy_to_matrix, Vec3};
 use crate::spec::{
     did_you_mean, BodySpec, InertiaSpec, JointKind, JointSpec, OrientationSpec, OriginSpec,

@@ -1,5 +1,5 @@
 //! A minimal element tree of an XML document with the line of every element (quick-xml):
-//! enough for URDF, whose content lives in elements and attributes, never in text.
+//! enough for URDF and MJCF, whose content lives in elements and attributes, never in text.
 
 use quick_xml::events::{BytesStart, Event};
 use quick_xml::Reader;

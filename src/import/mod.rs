@@ -1,0 +1,9 @@
+//! What URDF and MJCF import share: the XML element tree with lines (`xml`), identifiers from
+//! names (`names`), rigid placements (`frame`), inertials merged (`inertia`) and the TOML
+//! text of an imported spec (`toml_text`).
+
+pub(crate) mod frame;
+pub(crate) mod inertia;
+pub(crate) mod names;
+pub(crate) mod toml_text;
+pub(crate) mod xml;
