@@ -3,6 +3,7 @@
 //! - the first `plane` geom of `<worldbody>` is the `[ground]`: its height along the normal
 //!   against gravity, its friction; a plane whose normal is not against gravity is left out
 //!   with a note;
+//! - without a ground, only the shapes in pairs are kept;
 //! - a sphere, capsule, box or cylinder geom on a moving body becomes a `[[collision]]` on the
 //!   body that carries it, when MuJoCo would let it touch the plane (`contype & conaffinity`
 //!   either way); pairs of such shapes on different bodies that MuJoCo lets collide (the bit
@@ -181,7 +182,7 @@ pub(super) fn add(m: &Model, host: &[Host], spec: &mut Spec) -> (Vec<String>, Ve
             c.damping = d;
             let n = g.name.clone().unwrap_or_else(|| spec.body[b].name.clone());
             c.name = Some(names.name(&n));
-            sources.push(format!("MJCF {}", g.at));
+            sources.push(g.at.clone());
             spec.collision.push(c);
             shapes.push((i, b, g));
         }
@@ -215,6 +216,22 @@ pub(super) fn add(m: &Model, host: &[Host], spec: &mut Spec) -> (Vec<String>, Ve
                 b: names_all[y].clone(),
             });
         }
+    }
+    // without a ground, a shape touches only the shapes of its pairs
+    if plane.is_none() {
+        let paired: HashSet<&str> = spec
+            .contact_pair
+            .iter()
+            .flat_map(|p| [p.a.as_str(), p.b.as_str()])
+            .collect();
+        let keep: Vec<bool> = names_all
+            .iter()
+            .map(|n| paired.contains(n.as_str()))
+            .collect();
+        let mut k = keep.iter();
+        spec.collision.retain(|_| *k.next().unwrap_or(&false));
+        let mut k = keep.iter();
+        sources.retain(|_| *k.next().unwrap_or(&false));
     }
     if !cylinders_paired.is_empty() {
         notes.push(format!(
