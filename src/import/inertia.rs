@@ -5,6 +5,7 @@
 //! ```
 
 use crate::math::{Mat3, Vec3};
+use crate::spec::{BodySpec, InertiaSpec};
 
 /// One inertial in a body frame: `(mass, com, inertia about com)`.
 pub(crate) type Part = (f64, Vec3, Mat3);
@@ -46,4 +47,20 @@ pub(crate) fn merge(parts: &[Part]) -> Part {
             (m, c, (j + j.transpose()) * 0.5)
         }
     }
+}
+
+/// Gives `body` the merged `parts` (round-off cleaned): its mass, centre of mass and inertia.
+pub(crate) fn set_inertial(body: &mut BodySpec, parts: &[Part]) {
+    let (m, c, j) = merge(parts);
+    let j = clean(j, m);
+    body.mass = m;
+    body.com = [c.x, c.y, c.z];
+    body.inertia = InertiaSpec::Full([
+        j[(0, 0)],
+        j[(1, 1)],
+        j[(2, 2)],
+        j[(0, 1)],
+        j[(0, 2)],
+        j[(1, 2)],
+    ]);
 }

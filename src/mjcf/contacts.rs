@@ -27,12 +27,11 @@ use std::collections::HashSet;
 use super::inertia::Solid;
 use super::lower::Host;
 use super::model::{Geom, Model, Shape};
+use crate::import::entries::collision_on;
 use crate::import::names::Namer;
 use crate::math::Vec3;
 use crate::mechanics::ContactLaw;
-use crate::spec::{
-    BoxShape, CollisionSpec, ContactPairSpec, GroundSpec, RoundShape, Spec, SphereShape,
-};
+use crate::spec::{BoxShape, ContactPairSpec, GroundSpec, RoundShape, Spec, SphereShape};
 
 /// True when MuJoCo lets geoms `a` and `b` collide by their bits.
 fn bits(a: &Geom, b: &Geom) -> bool {
@@ -137,18 +136,10 @@ pub(super) fn add(m: &Model, host: &[Host], spec: &mut Spec) -> (Vec<String>, Ve
             if !touches_ground {
                 continue;
             }
-            let mut c = CollisionSpec {
-                name: None,
-                body: spec.body[b].name.clone(),
-                origin: host[i].place.then(&g.frame).origin_spec(),
-                sphere: None,
-                capsule: None,
-                cuboid: None,
-                cylinder: None,
-                friction: None,
-                stiffness: None,
-                damping: None,
-            };
+            let mut c = collision_on(
+                spec.body[b].name.clone(),
+                host[i].place.then(&g.frame).origin_spec(),
+            );
             match g.shape {
                 Shape::Solid(Solid::Sphere(r)) => c.sphere = Some(SphereShape { radius: r }),
                 Shape::Solid(Solid::Capsule(r, h)) => {

@@ -23,13 +23,13 @@ use std::collections::HashMap;
 
 use super::model::{ActuatorKind, Equality, FromGeom, JointType, Model, Shape};
 use super::options::ImportOptions;
+use crate::import::entries::{empty_spec, massless_body};
 use crate::import::frame::Iso;
-use crate::import::inertia::{clean, merge, Part};
+use crate::import::inertia::{merge, set_inertial, Part};
 use crate::import::names::Namer;
 use crate::math::{exp_so3, matrix_to_quat, Mat3, Vec3};
 use crate::spec::{
-    BodySpec, Coords, InertiaSpec, InitialSpec, JointKind, JointSpec, OrientationSpec, Problem,
-    SiteSpec, Spec,
+    Coords, InitialSpec, JointKind, JointSpec, OrientationSpec, Problem, SiteSpec, Spec,
 };
 
 /// What the import produced besides the spec.
@@ -122,21 +122,6 @@ fn body_name(m: &Model, i: usize) -> String {
         .unwrap_or_else(|| format!("body{i}"))
 }
 
-/// A spec body without mass.
-fn empty_body(name: String, description: String) -> BodySpec {
-    BodySpec {
-        name,
-        mass: 0.0,
-        com: [0.0; 3],
-        inertia: InertiaSpec::Full([0.0; 6]),
-        position: None,
-        orientation: None,
-        velocity: None,
-        angular_velocity: None,
-        description,
-    }
-}
-
 /// The world frame of every MuJoCo body at `qpos0`.
 pub(super) fn world_frames(m: &Model) -> Vec<Iso> {
     let mut w = vec![Iso::IDENTITY; m.bodies.len()];
@@ -158,22 +143,13 @@ pub(super) fn spec(
         notes: m.notes.clone(),
         ..Outcome::default()
     };
-    let mut spec = Spec {
-        name: Namer::default().name(&m.name),
-        description: format!("imported from {origin} (MJCF model \"{}\")", m.name),
-        gravity: m.gravity.unwrap_or([0.0, 0.0, -9.81]),
-        experiment: Default::default(),
-        solver: Default::default(),
-        body: Vec::new(),
-        joint: Vec::new(),
-        load: Vec::new(),
-        site: Vec::new(),
-        visual: Vec::new(),
-        ground: None,
-        collision: Vec::new(),
-        contact_pair: Vec::new(),
-        self_collision: false,
-    };
+    let mut spec = empty_spec(
+        Namer::default().name(&m.name),
+        format!("imported from {origin} (MJCF model \"{}\")", m.name),
+    );
+    if let Some(g) = m.gravity {
+        spec.gravity = g;
+    }
     if let Some(t) = m.timestep {
         if t > 0.0 && t <= spec.experiment.step {
             spec.solver.max_step = t;
@@ -205,7 +181,7 @@ pub(super) fn spec(
         } else {
             format!("MJCF body \"{original}\"")
         };
-        spec.body.push(empty_body(id, description));
+        spec.body.push(massless_body(id, description));
         parts.push(Vec::new());
         out.bodies.push(at.to_string());
         spec.body.len() - 1
@@ -440,19 +416,7 @@ pub(super) fn spec(
         }
     }
     for (b, p) in parts.iter().enumerate() {
-        let (mass, c, j) = merge(p);
-        let j = clean(j, mass);
-        let body = &mut spec.body[b];
-        body.mass = mass;
-        body.com = [c.x, c.y, c.z];
-        body.inertia = InertiaSpec::Full([
-            j[(0, 0)],
-            j[(1, 1)],
-            j[(2, 2)],
-            j[(0, 1)],
-            j[(0, 2)],
-            j[(1, 2)],
-        ]);
+        set_inertial(&mut spec.body[b], p);
     }
     if spec.body.is_empty() && problems.is_empty() {
         problems.push(Problem::new(

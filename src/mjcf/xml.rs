@@ -1,7 +1,7 @@
-//! The MJCF document as an element tree with the file and line of every element, its
-//! `<include file>` elements replaced by the children of the included file's root (read
-//! relative to the including file; an include cycle, a missing or malformed file is a problem
-//! at the `<include>`).
+//! The MJCF document as an element tree (`crate::import::xml`) with the file and line of every
+//! element, its `<include file>` elements replaced by the children of the included file's root
+//! (read relative to the including file; an include cycle, a missing or malformed file is a
+//! problem at the `<include>`).
 
 use std::path::{Path, PathBuf};
 use std::rc::Rc;
@@ -9,32 +9,10 @@ use std::rc::Rc;
 use crate::import::xml::{parse, Element};
 use crate::spec::Problem;
 
-/// One element: name, attributes in document order, children, file and line.
-#[derive(Clone, Debug)]
-pub(super) struct Node {
-    pub name: String,
-    pub attrs: Vec<(String, String)>,
-    pub children: Vec<Node>,
-    /// 1-based line in `file`.
-    pub line: usize,
-    /// The file it was read from, as shown in messages; empty for the main file.
-    pub file: Rc<str>,
-}
+/// An element of the document, with its file and line.
+pub(super) type Node = Element;
 
-impl Node {
-    /// The value of attribute `key`.
-    pub fn attr(&self, key: &str) -> Option<&str> {
-        self.attrs
-            .iter()
-            .find(|(k, _)| k == key)
-            .map(|(_, v)| v.as_str())
-    }
-
-    /// The children named `name`.
-    pub fn all<'a>(&'a self, name: &'a str) -> impl Iterator<Item = &'a Node> + 'a {
-        self.children.iter().filter(move |c| c.name == name)
-    }
-
+impl Element {
     /// Where the element is, for messages: `line 7: <joint name="elbow">`, or
     /// `line 7 of arm.xml: <joint>` in an included file.
     pub fn at(&self) -> String {
@@ -54,18 +32,11 @@ impl Node {
     }
 }
 
-/// The tree of `element` read from `file`.
-fn tree(element: Element, file: &Rc<str>) -> Node {
-    Node {
-        name: element.name,
-        attrs: element.attrs,
-        children: element
-            .children
-            .into_iter()
-            .map(|c| tree(c, file))
-            .collect(),
-        line: element.line,
-        file: Rc::clone(file),
+/// Marks `element` and everything below it as read from `file`.
+fn from_file(element: &mut Element, file: &Rc<str>) {
+    element.file = Rc::clone(file);
+    for c in &mut element.children {
+        from_file(c, file);
     }
 }
 
@@ -77,7 +48,7 @@ fn tree(element: Element, file: &Rc<str>) -> Node {
 pub(super) fn read(text: &str, path: &Path) -> Result<Node, Vec<Problem>> {
     let root =
         parse(text).map_err(|(line, msg)| vec![Problem::new(format!("line {line}"), msg)])?;
-    let mut root = tree(root, &Rc::from(""));
+    let mut root = root;
     if root.name != "mujoco" {
         return Err(vec![
             root.problem("the root element of an MJCF file is <mujoco>")
@@ -126,7 +97,10 @@ fn expand(node: &mut Node, dir: &Path, stack: &mut Vec<PathBuf>, problems: &mut 
         };
         let shown: Rc<str> = Rc::from(path.to_string_lossy().as_ref());
         let root = match parse(&text) {
-            Ok(r) => tree(r, &shown),
+            Ok(mut r) => {
+                from_file(&mut r, &shown);
+                r
+            }
             Err((line, msg)) => {
                 problems.push(Problem::new(format!("line {line} of {shown}"), msg));
                 continue;
