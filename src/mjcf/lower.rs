@@ -21,8 +21,7 @@
 
 use std::collections::HashMap;
 
-use super::model::{ActuatorKind, Equality, FromGeom, JointType, Model, Shape};
-use super::options::ImportOptions;
+use super::model::{FromGeom, JointType, Model, Shape};
 use crate::import::entries::{empty_spec, massless_body};
 use crate::import::frame::Iso;
 use crate::import::inertia::{merge, set_inertial, Part};
@@ -45,6 +44,18 @@ pub struct Outcome {
     pub collisions: Vec<String>,
 }
 
+/// The spec and what the later stages (actuators, keyframe, equalities, contacts) need.
+pub(super) struct Lowered {
+    pub spec: Spec,
+    pub outcome: Outcome,
+    /// Where each MuJoCo body ended up.
+    pub host: Vec<Host>,
+    /// The coordinates of `qpos`, in MuJoCo's order.
+    pub slots: Vec<Slot>,
+    /// The spec joint of each named MuJoCo joint.
+    pub joint_of: HashMap<String, usize>,
+}
+
 /// Where a MuJoCo body ended up.
 #[derive(Clone, Copy, Debug)]
 pub(super) struct Host {
@@ -56,7 +67,7 @@ pub(super) struct Host {
 
 /// A joint's coordinates in MuJoCo's `qpos`/`qvel`.
 #[derive(Clone, Copy, Debug)]
-enum Slot {
+pub(super) enum Slot {
     /// A spec joint (hinge, slide, ball).
     Joint(usize, JointType),
     /// A free body.
@@ -115,7 +126,7 @@ fn body_part(m: &Model, i: usize, problems: &mut Vec<Problem>) -> Part {
 }
 
 /// The name of MuJoCo body `i` (its `name`, else `body{i}`).
-fn body_name(m: &Model, i: usize) -> String {
+pub(super) fn body_name(m: &Model, i: usize) -> String {
     m.bodies[i]
         .name
         .clone()
@@ -133,12 +144,7 @@ pub(super) fn world_frames(m: &Model) -> Vec<Iso> {
 
 /// Lowers `m` to a spec; `problems` collects what makes that impossible.
 #[allow(clippy::too_many_lines)]
-pub(super) fn spec(
-    m: &Model,
-    opts: &ImportOptions,
-    origin: &str,
-    problems: &mut Vec<Problem>,
-) -> (Spec, Outcome, Vec<Host>) {
+pub(super) fn spec(m: &Model, origin: &str, problems: &mut Vec<Problem>) -> Lowered {
     let mut out = Outcome {
         notes: m.notes.clone(),
         ..Outcome::default()
@@ -424,317 +430,14 @@ pub(super) fn spec(
             "nothing moves: no body of the model has a joint",
         ));
     }
-    actuators(m, &joint_of, &mut spec, &mut out, problems);
-    initial_state(m, opts, &slots, &mut spec, problems);
-    equalities(m, &joint_of, &host, &world, &mut spec, &mut out, problems);
-    (spec, out, host)
-}
-
-/// Marks the joints of the actuators as actuated, with their effort limit.
-fn actuators(
-    m: &Model,
-    joint_of: &HashMap<&str, usize>,
-    spec: &mut Spec,
-    out: &mut Outcome,
-    problems: &mut Vec<Problem>,
-) {
-    for a in &m.actuators {
-        let Some(&k) = joint_of.get(a.joint.as_str()) else {
-            problems.push(Problem::new(
-                a.at.clone(),
-                format!("joint \"{}\" does not exist", a.joint),
-            ));
-            continue;
-        };
-        let j = &mut spec.joint[k];
-        let name = a.name.as_deref().unwrap_or(&a.joint);
-        if j.kind == JointKind::Spherical {
-            out.notes.push(format!("actuator '{name}' on ball joint '{}': not imported (triad's spherical inputs are torques about the parent axes)", a.joint));
-            continue;
-        }
-        let input = if j.kind == JointKind::Revolute {
-            "tau"
-        } else {
-            "f"
-        };
-        if j.actuated {
-            out.notes.push(format!("actuator '{name}': joint '{}' already has an actuator; both act through joint.{}.{input}", a.joint, j.name));
-        }
-        j.actuated = true;
-        let bound = |r: Option<[f64; 2]>, scale: f64| {
-            r.map(|[lo, hi]| (lo * scale).abs().min((hi * scale).abs()))
-        };
-        let symmetric = |r: Option<[f64; 2]>| r.is_none_or(|[lo, hi]| lo == -hi);
-        let effort = match (bound(a.ctrlrange, a.gear), bound(a.forcerange, 1.0)) {
-            (Some(x), Some(y)) => Some(x.min(y)),
-            (x, y) => x.or(y),
-        }
-        .filter(|e| *e > 0.0);
-        j.effort = effort;
-        let tail = format!(
-            "the input is the joint's generalised force joint.{}.{input}",
-            j.name
-        );
-        match a.kind {
-            ActuatorKind::Motor if a.gear == 1.0 && symmetric(a.ctrlrange) && symmetric(a.forcerange) => {}
-            ActuatorKind::Motor if a.gear == 1.0 => out.notes.push(format!(
-                "actuator '{name}': an asymmetric ctrlrange/forcerange is clamped to ±{} (the smaller bound); {tail}",
-                effort.unwrap_or(0.0)
-            )),
-            ActuatorKind::Motor => out.notes.push(format!(
-                "actuator '{name}': gear {} is not applied: {tail} (= gear × ctrl; actuator.{name}.ctrl is not available yet)",
-                a.gear
-            )),
-            ActuatorKind::Position | ActuatorKind::Velocity | ActuatorKind::General => {
-                let kind = match a.kind {
-                    ActuatorKind::Position => "position servo",
-                    ActuatorKind::Velocity => "velocity servo",
-                    _ => "general actuator",
-                };
-                out.notes.push(format!(
-                    "actuator '{name}' ({kind}): MuJoCo's actuator law is not reproduced: {tail} (actuator.{name}.ctrl is not available yet)"
-                ));
-            }
-        }
-    }
-}
-
-/// Sets the initial state: `qpos0` (each hinge and slide at its `ref`, each free body where the
-/// model puts it), or the keyframe `opts.keyframe`.
-fn initial_state(
-    m: &Model,
-    opts: &ImportOptions,
-    slots: &[Slot],
-    spec: &mut Spec,
-    problems: &mut Vec<Problem>,
-) {
-    let Some(name) = &opts.keyframe else { return };
-    let Some(key) = m.keys.iter().find(|k| k.name == *name) else {
-        let names: Vec<&str> = m.keys.iter().map(|k| k.name.as_str()).collect();
-        problems.push(Problem::new(
-            "",
-            format!(
-                "--keyframe {name}: the model has no <key name=\"{name}\"> (keys: {}){}",
-                if names.is_empty() {
-                    "none".to_string()
-                } else {
-                    names.join(", ")
-                },
-                crate::spec::did_you_mean(name, names.iter().copied())
-            ),
-        ));
-        return;
-    };
-    let nq: usize = slots
-        .iter()
-        .map(|s| match s {
-            Slot::Free(_) => 7,
-            Slot::Joint(_, JointType::Ball) => 4,
-            Slot::Joint(..) => 1,
-        })
-        .sum();
-    let nv: usize = slots
-        .iter()
-        .map(|s| match s {
-            Slot::Free(_) => 6,
-            Slot::Joint(_, JointType::Ball) => 3,
-            Slot::Joint(..) => 1,
-        })
-        .sum();
-    let check = |v: &Option<Vec<f64>>, n: usize, what: &str, problems: &mut Vec<Problem>| match v {
-        Some(v) if v.len() != n => {
-            problems.push(Problem::new(
-                key.at.clone(),
-                format!("{what} has {} numbers; the model has {n}", v.len()),
-            ));
-            false
-        }
-        _ => true,
-    };
-    if !check(&key.qpos, nq, "qpos", problems) || !check(&key.qvel, nv, "qvel", problems) {
-        return;
-    }
-    let (mut iq, mut iv) = (0, 0);
-    for s in slots {
-        let q = |k: usize| key.qpos.as_ref().map(|v| v[iq + k]);
-        let v = |k: usize| key.qvel.as_ref().map_or(0.0, |v| v[iv + k]);
-        match *s {
-            Slot::Free(b) => {
-                let body = &mut spec.body[b];
-                let r = match key.qpos.as_ref() {
-                    Some(p) => {
-                        body.position = Some([p[iq], p[iq + 1], p[iq + 2]]);
-                        let quat = [p[iq + 3], p[iq + 4], p[iq + 5], p[iq + 6]];
-                        body.orientation = Some(OrientationSpec::Quat(quat));
-                        super::model::rotation(quat)
-                    }
-                    None => match &body.orientation {
-                        Some(OrientationSpec::Quat(q)) => super::model::rotation(*q),
-                        _ => Mat3::identity(),
-                    },
-                };
-                let w_local = Vec3::new(v(3), v(4), v(5));
-                let w = r * w_local;
-                body.velocity = Some([v(0), v(1), v(2)]);
-                body.angular_velocity = Some([w.x, w.y, w.z]);
-                iq += 7;
-                iv += 6;
-            }
-            Slot::Joint(j, JointType::Ball) => {
-                let quat = q(0).map(|_| {
-                    [
-                        q(0).unwrap_or(1.0),
-                        q(1).unwrap_or(0.0),
-                        q(2).unwrap_or(0.0),
-                        q(3).unwrap_or(0.0),
-                    ]
-                });
-                spec.joint[j].initial = Some(InitialSpec {
-                    quat: Some(quat.unwrap_or([1.0, 0.0, 0.0, 0.0])),
-                    w: Some([v(0), v(1), v(2)]),
-                    ..InitialSpec::default()
-                });
-                iq += 4;
-                iv += 3;
-            }
-            Slot::Joint(j, _) => {
-                let q0 = q(0).or_else(|| {
-                    spec.joint[j].initial.as_ref().and_then(|i| match i.q {
-                        Some(Coords::Scalar(x)) => Some(x),
-                        _ => None,
-                    })
-                });
-                spec.joint[j].initial = Some(InitialSpec {
-                    q: Some(Coords::Scalar(q0.unwrap_or(0.0))),
-                    qd: Some(Coords::Scalar(v(0))),
-                    ..InitialSpec::default()
-                });
-                iq += 1;
-                iv += 1;
-            }
-        }
-    }
-}
-
-/// `<equality>`: `connect` and `weld` become loop-closing spherical and fixed joints between
-/// the two bodies' hosts, placed where the bodies are at `qpos0`; `joint` is noted.
-#[allow(clippy::too_many_arguments)]
-fn equalities(
-    m: &Model,
-    joint_of: &HashMap<&str, usize>,
-    host: &[Host],
-    world: &[Iso],
-    spec: &mut Spec,
-    out: &mut Outcome,
-    problems: &mut Vec<Problem>,
-) {
-    let find = |name: &str| {
-        m.bodies
-            .iter()
-            .position(|b| b.name.as_deref() == Some(name))
-    };
-    let mut names = Namer::new(
-        &spec
-            .joint
-            .iter()
-            .map(|j| j.name.as_str())
-            .collect::<Vec<_>>(),
-    );
-    for (k, e) in m.equalities.iter().enumerate() {
-        let (at, b1, b2, anchor, kind) = match e {
-            Equality::Joint { joint1, joint2, .. } => {
-                for n in std::iter::once(joint1).chain(joint2) {
-                    if !joint_of.contains_key(n.as_str()) {
-                        if let Equality::Joint { at, .. } = e {
-                            problems.push(Problem::new(
-                                at.clone(),
-                                format!("joint \"{n}\" does not exist"),
-                            ));
-                        }
-                    }
-                }
-                out.notes.push(format!(
-                    "<equality joint joint1=\"{joint1}\"{}>: the coupling is not enforced (triad has no joint couplings yet): the joints are independent",
-                    joint2.as_ref().map_or_else(String::new, |j| format!(" joint2=\"{j}\""))
-                ));
-                continue;
-            }
-            Equality::Connect {
-                at,
-                body1,
-                body2,
-                anchor,
-            } => (at, body1, body2, *anchor, JointKind::Spherical),
-            Equality::Weld { at, body1, body2 } => {
-                (at, body1, body2, Vec3::zeros(), JointKind::Fixed)
-            }
-        };
-        let i1 = find(b1);
-        let i2 = match b2 {
-            Some(n) => find(n),
-            None => Some(0),
-        };
-        let (Some(i1), Some(i2)) = (i1, i2) else {
-            let missing = if i1.is_none() {
-                b1.clone()
-            } else {
-                b2.clone().unwrap_or_default()
-            };
-            problems.push(Problem::new(
-                at.clone(),
-                format!("body \"{missing}\" does not exist"),
-            ));
-            continue;
-        };
-        let (h1, h2) = (host[i1], host[i2]);
-        if h1.body == h2.body {
-            problems.push(Problem::new(
-                at.clone(),
-                "the two bodies are welded into one: the equality constrains nothing",
-            ));
-            continue;
-        }
-        // the constraint frame: at the anchor, oriented as body1, at qpos0
-        let in1 = Iso {
-            r: Mat3::identity(),
-            p: anchor,
-        };
-        let w = world[i1].then(&in1);
-        let in2 = world[i2].inverse().then(&w);
-        let (parent, o1, child, o2) = match (h1.body, h2.body) {
-            (Some(c), p) => (p, h2.place.then(&in2), c, h1.place.then(&in1)),
-            (None, Some(c)) => (None, h1.place.then(&in1), c, h2.place.then(&in2)),
-            (None, None) => continue,
-        };
-        let base = if kind == JointKind::Spherical {
-            "connect"
-        } else {
-            "weld"
-        };
-        let id = names.name(&format!("{base}{}", k + 1));
-        out.joints.push(at.clone());
-        spec.joint.push(JointSpec {
-            name: id,
-            kind,
-            parent: parent.map_or_else(|| "world".to_string(), |p| spec.body[p].name.clone()),
-            child: spec.body[child].name.clone(),
-            origin: o1.origin_spec(),
-            child_origin: Some(o2.origin_spec()),
-            axis: None,
-            axis2: None,
-            actuated: false,
-            damping: 0.0,
-            stiffness: 0.0,
-            lower: None,
-            upper: None,
-            effort: None,
-            stop_stiffness: None,
-            stop_damping: None,
-            initial: None,
-            description: format!(
-                "MJCF <equality {base}> of \"{b1}\" and \"{}\" (a loop-closing joint)",
-                b2.as_deref().unwrap_or("world")
-            ),
-        });
+    Lowered {
+        spec,
+        outcome: out,
+        host,
+        slots,
+        joint_of: joint_of
+            .into_iter()
+            .map(|(k, v)| (k.to_string(), v))
+            .collect(),
     }
 }

@@ -4,10 +4,12 @@
 //!
 //! The files: `xml` (the element tree with file and line, `<include>` expanded), `defaults`
 //! (`<default>` classes, `class`, `childclass`), `frames` (`<compiler angle eulerseq>` and the
-//! orientation forms), `inertia` (geom mass properties), `model` (the typed document, every
-//! problem with file, line and element), `lower` (→ `Spec`: frames so that `joint.J.q` is
-//! MuJoCo's `qpos`, inertials, sites, keyframes, actuators, equalities), `contacts` (geoms as
-//! collision shapes, the world plane as the ground), `write` (commented TOML), `options`.
+//! orientation forms), `inertia` (geom mass properties), `model` (the typed document), `read`
+//! with `reader`, `bodies` and `sections` (reading it, every problem with file, line and
+//! element), `lower` (→ `Spec`: frames so that `joint.J.q` is MuJoCo's `qpos`, inertials,
+//! sites), `actuators`, `keyframe` (the initial state), `equality` (loop-closing joints),
+//! `contacts` (geoms as collision shapes, the world plane as the ground), `write` (commented
+//! TOML), `options`.
 //!
 //! Semantics chosen (docs/guide/bring-your-robot.md, "MJCF"):
 //! - `hinge` → revolute, `slide` → prismatic, `ball` → spherical, `free`/`<freejoint>` → a free
@@ -21,13 +23,20 @@
 //! - tendons, muscles, flex, composites and plugins are refused; lights, cameras, materials,
 //!   textures, sensors and visual settings are ignored.
 
+mod actuators;
+mod bodies;
 mod contacts;
 mod defaults;
+mod equality;
 mod frames;
 mod inertia;
+mod keyframe;
 mod lower;
 mod model;
 mod options;
+mod read;
+mod reader;
+mod sections;
 mod write;
 mod xml;
 
@@ -57,12 +66,30 @@ pub fn import(
         notes: Vec::new(),
     };
     let root = xml::read(text, path).map_err(fail)?;
-    let model = model::model(&root).map_err(fail)?;
+    let model = read::model(&root).map_err(fail)?;
     let name = path
         .file_name()
         .map_or_else(|| origin.clone(), |f| f.to_string_lossy().into_owned());
     let mut problems = Vec::new();
-    let (mut spec, mut outcome, host) = lower::spec(&model, opts, &name, &mut problems);
+    let lower::Lowered {
+        mut spec,
+        mut outcome,
+        host,
+        slots,
+        joint_of,
+    } = lower::spec(&model, &name, &mut problems);
+    actuators::actuators(&model, &joint_of, &mut spec, &mut outcome, &mut problems);
+    keyframe::initial_state(&model, opts, &slots, &mut spec, &mut problems);
+    let world = lower::world_frames(&model);
+    equality::equalities(
+        &model,
+        &joint_of,
+        &host,
+        &world,
+        &mut spec,
+        &mut outcome,
+        &mut problems,
+    );
     if !opts.no_contacts && problems.is_empty() {
         let (sources, notes) = contacts::add(&model, &host, &mut spec);
         outcome.collisions = sources;
