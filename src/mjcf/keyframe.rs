@@ -10,6 +10,15 @@ use super::options::ImportOptions;
 use crate::math::{Mat3, Vec3};
 use crate::spec::{Coords, InitialSpec, OrientationSpec, Problem, Spec};
 
+/// The numbers a joint takes in `qpos` and in `qvel`.
+fn sizes(s: &Slot) -> (usize, usize) {
+    match s {
+        Slot::Free(_) => (7, 6),
+        Slot::Joint(_, JointType::Ball) => (4, 3),
+        Slot::Joint(..) => (1, 1),
+    }
+}
+
 /// Sets the initial state: `qpos0` (each hinge and slide at its `ref`, each free body where the
 /// model puts it), or the keyframe `opts.keyframe`.
 pub(super) fn initial_state(
@@ -36,22 +45,8 @@ pub(super) fn initial_state(
         ));
         return;
     };
-    let nq: usize = slots
-        .iter()
-        .map(|s| match s {
-            Slot::Free(_) => 7,
-            Slot::Joint(_, JointType::Ball) => 4,
-            Slot::Joint(..) => 1,
-        })
-        .sum();
-    let nv: usize = slots
-        .iter()
-        .map(|s| match s {
-            Slot::Free(_) => 6,
-            Slot::Joint(_, JointType::Ball) => 3,
-            Slot::Joint(..) => 1,
-        })
-        .sum();
+    let nq: usize = slots.iter().map(|s| sizes(s).0).sum();
+    let nv: usize = slots.iter().map(|s| sizes(s).1).sum();
     let check = |v: &Option<Vec<f64>>, n: usize, what: &str, problems: &mut Vec<Problem>| match v {
         Some(v) if v.len() != n => {
             problems.push(Problem::new(
@@ -88,8 +83,6 @@ pub(super) fn initial_state(
                 let w = r * w_local;
                 body.velocity = Some([v(0), v(1), v(2)]);
                 body.angular_velocity = Some([w.x, w.y, w.z]);
-                iq += 7;
-                iv += 6;
             }
             Slot::Joint(j, JointType::Ball) => {
                 let quat = q(0).map(|_| {
@@ -105,8 +98,6 @@ pub(super) fn initial_state(
                     w: Some([v(0), v(1), v(2)]),
                     ..InitialSpec::default()
                 });
-                iq += 4;
-                iv += 3;
             }
             Slot::Joint(j, _) => {
                 let q0 = q(0).or_else(|| {
@@ -120,9 +111,10 @@ pub(super) fn initial_state(
                     qd: Some(Coords::Scalar(v(0))),
                     ..InitialSpec::default()
                 });
-                iq += 1;
-                iv += 1;
             }
         }
+        let (dq, dv) = sizes(s);
+        iq += dq;
+        iv += dv;
     }
 }
