@@ -14,8 +14,12 @@
 
 pub mod ffi;
 pub mod fmu;
+#[cfg(feature = "tools")]
+mod import;
 pub mod math;
 pub mod mechanics;
+#[cfg(feature = "tools")]
+pub mod mjcf;
 #[cfg(feature = "tools")]
 pub mod package;
 #[cfg(feature = "tools")]

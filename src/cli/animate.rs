@@ -15,7 +15,7 @@ use super::output::AtomicFile;
 /// Options of `triad animate`.
 #[derive(Debug, Args)]
 pub struct AnimateArgs {
-    /// Model spec (.toml or .json), robot description (.urdf), or the name of a shipped model:
+    /// Model spec (.toml or .json), robot description (.urdf or MJCF .xml), or the name of a shipped model:
     /// the model the result comes from (its shapes, or defaults drawn from its joints and
     /// inertia).
     pub model: String,
@@ -36,7 +36,7 @@ pub struct AnimateArgs {
     /// last rows are always kept).
     #[arg(long, value_name = "N", default_value_t = 100.0)]
     pub fps: f64,
-    /// How a .urdf MODEL is imported: as for the run the result comes from (a result of a run
+    /// How a .urdf or MJCF .xml MODEL is imported. as for the run the result comes from (a result of a run
     /// with --floating-base is replayed with --floating-base).
     #[command(flatten)]
     pub urdf: ImportArgs,

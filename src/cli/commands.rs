@@ -9,7 +9,7 @@ use triad::variables::{Causality, VarType, VariableTable};
 
 use super::error::CliError;
 use super::import_args::ImportArgs;
-use super::load::{is_urdf, load, load_noted, load_urdf, no_import_options};
+use super::load::{is_mjcf, is_urdf, load, load_mjcf, load_noted, load_urdf, no_import_options};
 use super::start_gap;
 
 /// Prints a note on standard output: `note: …`, or as it is when it is a warning (`warning: …`).
@@ -213,7 +213,7 @@ pub fn build(
     } else {
         model
     };
-    let spec = if is_urdf(model) {
+    let spec = if is_urdf(model) || is_mjcf(model) {
         load(&model.to_string_lossy(), urdf)?
     } else {
         no_import_options(&model.to_string_lossy(), urdf)?;
@@ -248,15 +248,21 @@ pub fn build(
     Ok(())
 }
 
-/// `triad import ROBOT.urdf`: writes the equivalent spec (TOML) to `output`, or to standard
-/// output; nothing is written when the URDF has a problem.
+/// `triad import ROBOT.urdf|MODEL.xml`: writes the equivalent spec (TOML) to `output`, or to
+/// standard output; nothing is written when the robot description has a problem.
 pub fn import(robot: &Path, output: Option<&Path>, urdf: &ImportArgs) -> Result<(), CliError> {
     let name = robot.to_string_lossy();
-    if !is_urdf(robot) {
-        return Err(format!("{name}: import reads a .urdf file").into());
+    no_import_options(&name, urdf)?;
+    let toml = if is_urdf(robot) {
+        let (spec, outcome) = load_urdf(&name, &urdf.options())?;
+        triad::urdf::to_toml(&spec, &outcome)
+    } else if is_mjcf(robot) {
+        let (spec, outcome) = load_mjcf(&name, &urdf.mjcf_options())?;
+        triad::mjcf::to_toml(&spec, &outcome)
+    } else {
+        return Err(format!("{name}: import reads a .urdf or an MJCF .xml file").into());
     }
-    let (spec, outcome) = load_urdf(&name, &urdf.options())?;
-    let toml = triad::urdf::to_toml(&spec, &outcome).map_err(|e| format!("{name}: {e}"))?;
+    .map_err(|e| format!("{name}: {e}"))?;
     match output {
         Some(out) => {
             std::fs::write(out, toml).map_err(|e| format!("{}: {e}", out.display()))?;

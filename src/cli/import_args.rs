@@ -1,11 +1,14 @@
-//! The options of URDF import, one clap `Args` group flattened into every command that reads a
-//! MODEL (`check`, `describe`, `simulate`, `build`, `animate`, `import`): a new import option is
-//! added here and in `urdf::ImportOptions`, nowhere else.
+//! The options of URDF and MJCF import, one clap `Args` group flattened into every command that
+//! reads a MODEL (`check`, `describe`, `simulate`, `build`, `animate`, `linearize`, `import`): a
+//! new import option is added here and in `urdf::ImportOptions` or `mjcf::ImportOptions`,
+//! nowhere else.
 
 use clap::Args;
+use triad::mjcf;
 use triad::urdf::{Base, ImportOptions};
 
-/// How a `.urdf` MODEL is imported (the same options and meaning as `triad import`).
+/// How a `.urdf` or MJCF `.xml` MODEL is imported (the same options and meaning as `triad
+/// import`).
 #[derive(Clone, Debug, Default, Args)]
 #[command(next_help_heading = "URDF import (a .urdf only)")]
 pub struct ImportArgs {
@@ -38,6 +41,15 @@ pub struct ImportArgs {
     /// origin), often with the feet inside the ground.
     #[arg(long)]
     pub on_ground: bool,
+    /// MJCF: leave out the collision shapes (by default every sphere, capsule, box and cylinder
+    /// geom that MuJoCo lets touch the world's plane is a collision shape, and that plane the
+    /// ground).
+    #[arg(long, help_heading = "MJCF import (a .xml only)")]
+    pub no_contacts: bool,
+    /// MJCF: start from the <key name="NAME"> of the <keyframe> (its qpos and qvel; by default
+    /// the model's own pose, each hinge and slide at its ref).
+    #[arg(long, value_name = "NAME", help_heading = "MJCF import (a .xml only)")]
+    pub keyframe: Option<String>,
 }
 
 impl ImportArgs {
@@ -58,8 +70,28 @@ impl ImportArgs {
         }
     }
 
-    /// The options given, as typed (`--floating-base`, ...): for the message that a model other
-    /// than a URDF takes none.
+    /// The MJCF import options these arguments ask for.
+    pub fn mjcf_options(&self) -> mjcf::ImportOptions {
+        mjcf::ImportOptions {
+            no_contacts: self.no_contacts,
+            keyframe: self.keyframe.clone(),
+        }
+    }
+
+    /// The MJCF options given, as typed: for the message that a model other than an MJCF file
+    /// takes none.
+    pub fn given_mjcf(&self) -> Vec<&'static str> {
+        [
+            (self.no_contacts, "--no-contacts"),
+            (self.keyframe.is_some(), "--keyframe"),
+        ]
+        .into_iter()
+        .filter_map(|(on, name)| on.then_some(name))
+        .collect()
+    }
+
+    /// The URDF options given, as typed (`--floating-base`, ...): for the message that a model
+    /// other than a URDF takes none.
     pub fn given(&self) -> Vec<&'static str> {
         [
             (self.fixed_base, "--fixed-base"),

@@ -22,7 +22,7 @@ use super::{overrides, select};
 /// Options of `triad linearize`.
 #[derive(Debug, Args)]
 pub struct LinearizeArgs {
-    /// Model spec (.toml or .json), robot description (.urdf), or the name of a shipped model.
+    /// Model spec (.toml or .json), robot description (.urdf or MJCF .xml), or the name of a shipped model.
     pub model: String,
     /// Output file: .json, .npz (numpy) or .mat (MATLAB level 5), the same names in each;
     /// `-` (the default) prints JSON.
@@ -57,7 +57,7 @@ pub struct LinearizeArgs {
     /// Independent coordinates of closed loops (not available yet: loops are refused).
     #[arg(long, value_name = "J1,J2,...")]
     pub coordinates: Option<String>,
-    /// How a .urdf MODEL is imported.
+    /// How a .urdf or MJCF .xml MODEL is imported.
     #[command(flatten)]
     pub urdf: ImportArgs,
 }

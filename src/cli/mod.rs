@@ -36,24 +36,24 @@ pub struct Cli {
 pub enum Command {
     /// Validate MODEL and report every problem, with its location.
     Check {
-        /// Model spec (.toml or .json), a robot description (.urdf), or the name of a shipped
+        /// Model spec (.toml or .json), a robot description (.urdf, or MuJoCo MJCF .xml), or the name of a shipped
         /// model (e.g. double_pendulum).
         model: String,
-        /// How a .urdf MODEL is imported.
+        /// How a .urdf or MJCF .xml MODEL is imported.
         #[command(flatten)]
         urdf: ImportArgs,
     },
     /// Print the variable table (name, valueReference, causality, variability, unit); with
     /// --fmi 3 the FMI 3 names (arrays with their dimensions) and value references.
     Describe {
-        /// Model spec (.toml or .json), a robot description (.urdf), or the name of a shipped
+        /// Model spec (.toml or .json), a robot description (.urdf, or MuJoCo MJCF .xml), or the name of a shipped
         /// model.
         model: String,
         /// Whose names to print: 2 (default: the FMI 2 scalars) or 3 (the FMI 3 variables:
         /// vectors and matrices as arrays, `time` at valueReference 0).
         #[arg(long, value_name = "2|3", default_value = "2", value_parser = ["2", "3"])]
         fmi: String,
-        /// How a .urdf MODEL is imported.
+        /// How a .urdf or MJCF .xml MODEL is imported.
         #[command(flatten)]
         urdf: ImportArgs,
     },
@@ -94,7 +94,7 @@ pub enum Command {
     /// aarch64-darwin (the universal file in both), aarch64-linux and linux64-aarch64 ->
     /// aarch64-linux.
     Build {
-        /// Model spec (.toml or .json) or robot description (.urdf).
+        /// Model spec (.toml or .json) or robot description (.urdf, or MuJoCo MJCF .xml).
         model: PathBuf,
         /// Output file (default: <name>.fmu in the current directory).
         #[arg(short, long, value_name = "OUT.fmu")]
@@ -118,24 +118,34 @@ pub enum Command {
         /// contact and joint-stop events when the importer allows it.
         #[arg(long, value_name = "2|3", default_value = "2", value_parser = ["2", "3"])]
         fmi: String,
-        /// How a .urdf MODEL is imported.
+        /// How a .urdf or MJCF .xml MODEL is imported.
         #[command(flatten)]
         urdf: ImportArgs,
     },
-    /// Write the model spec equivalent to a URDF (editable TOML; building from either gives
-    /// the same FMU). The root link is as the URDF says (a `world` link with a fixed joint:
-    /// welded; a floating joint: free); a bare root is welded to the world (as Pinocchio and
-    /// MuJoCo do). Links on fixed joints are merged into their parents and become sites.
-    /// Revolute and prismatic `<limit lower upper>` become joint stops and `effort` clamps the
-    /// actuator input (placeholders lower = upper or effort = 0 are ignored). A `<visual>` or
-    /// `<collision>` that cannot be read is dropped with a warning naming its line.
+    /// Write the model spec equivalent to a URDF or an MJCF model (editable TOML; building from
+    /// either gives the same FMU).
+    ///
+    /// URDF: the root link is as the URDF says (a `world` link with a fixed joint: welded; a
+    /// floating joint: free); a bare root is welded to the world (as Pinocchio and MuJoCo do).
+    /// Links on fixed joints are merged into their parents and become sites. Revolute and
+    /// prismatic `<limit lower upper>` become joint stops and `effort` clamps the actuator input
+    /// (placeholders lower = upper or effort = 0 are ignored). A `<visual>` or `<collision>` that
+    /// cannot be read is dropped with a warning naming its line.
+    ///
+    /// MJCF (MuJoCo's .xml): hinge, slide, ball and free joints, bodies without joints merged
+    /// into their parents, inertials given or computed from the geoms as MuJoCo does, default
+    /// classes, includes, keyframes (--keyframe), geoms as collision shapes touching the
+    /// world's plane (unless --no-contacts), connect and weld equalities as loop-closing
+    /// joints, motors as actuated joints. Joint coordinates are MuJoCo's qpos (angles in the
+    /// file's <compiler angle> unit, degrees by default). What is not reproduced is noted in
+    /// the output; tendons, muscles, flex, composites and plugins are refused.
     Import {
-        /// Robot description (.urdf).
+        /// Robot description (.urdf, or MuJoCo MJCF .xml).
         robot: PathBuf,
         /// Output file (default: standard output).
         #[arg(short, long, value_name = "OUT.toml")]
         output: Option<PathBuf>,
-        /// How the URDF is imported.
+        /// How the robot description is imported.
         #[command(flatten)]
         urdf: ImportArgs,
     },

@@ -22,7 +22,7 @@ use super::{overrides, select};
 /// Options of `triad simulate`.
 #[derive(Debug, Args)]
 pub struct SimulateArgs {
-    /// Model spec (.toml or .json), robot description (.urdf), or the name of a shipped model.
+    /// Model spec (.toml or .json), robot description (.urdf or MJCF .xml), or the name of a shipped model.
     pub model: String,
     /// Stop time, s (default: experiment.stop).
     #[arg(long, value_name = "T")]
@@ -65,7 +65,7 @@ pub struct SimulateArgs {
     /// Also write a 3-D replay of the run to this HTML file (as `triad animate`).
     #[arg(long, value_name = "OUT.html")]
     pub animate: Option<PathBuf>,
-    /// How a .urdf MODEL is imported.
+    /// How a .urdf or MJCF .xml MODEL is imported.
     #[command(flatten)]
     pub urdf: ImportArgs,
 }

@@ -17,10 +17,11 @@
 //!   added when the spec has none.
 
 use super::mass::{Iso, Placement};
-use super::names::Namer;
 use super::robot::{Geometry, Robot};
+use crate::import::entries::collision_on;
+use crate::import::names::Namer;
 use crate::mechanics::ContactLaw;
-use crate::spec::{BoxShape, CollisionSpec, GroundSpec, RoundShape, Spec, SphereShape};
+use crate::spec::{BoxShape, GroundSpec, RoundShape, Spec, SphereShape};
 
 /// How many links a note names before it says how many more.
 const LISTED: usize = 6;
@@ -71,21 +72,12 @@ pub(super) fn add(
                 welded.push(here);
                 continue;
             };
-            let mut c = CollisionSpec {
-                name: None,
-                body: spec.body[b].name.clone(),
-                origin: h
-                    .frame
+            let mut c = collision_on(
+                spec.body[b].name.clone(),
+                h.frame
                     .then(&Iso::of(&shape.origin))
                     .origin(h.frame.is_identity().then_some(&shape.origin)),
-                sphere: None,
-                capsule: None,
-                cuboid: None,
-                cylinder: None,
-                friction: None,
-                stiffness: None,
-                damping: None,
-            };
+            );
             let sizes_ok = match &shape.geometry {
                 Geometry::Sphere(r) => {
                     c.sphere = Some(SphereShape { radius: *r });

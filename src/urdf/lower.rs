@@ -9,14 +9,16 @@
 
 use std::collections::HashMap;
 
-use super::mass::{clean, distribute, merge, Iso, Parts, Placement};
-use super::names::Namer;
+use super::mass::{distribute, Iso, Parts, Placement};
 use super::options::{Base, ImportOptions};
 use super::robot::{at, Geometry, JointType, Robot, Shape};
+use crate::import::entries::{empty_spec, massless_body};
+use crate::import::inertia::set_inertial;
+use crate::import::names::Namer;
 use crate::math::{rpy_to_matrix, Vec3};
 use crate::spec::{
-    did_you_mean, BodySpec, InertiaSpec, JointKind, JointSpec, OrientationSpec, OriginSpec,
-    Problem, SiteSpec, Spec, VisualSpec,
+    did_you_mean, JointKind, JointSpec, OrientationSpec, OriginSpec, Problem, SiteSpec, Spec,
+    VisualSpec,
 };
 
 /// What the import produced besides the spec.
@@ -157,22 +159,7 @@ pub(crate) fn spec(
             parent_joint[i].is_none() && link_at.get(robot.links[i].name.as_str()) == Some(&i)
         })
         .collect();
-    let empty = Spec {
-        name: "robot".into(),
-        description: String::new(),
-        gravity: [0.0, 0.0, -9.81],
-        experiment: Default::default(),
-        solver: Default::default(),
-        body: Vec::new(),
-        joint: Vec::new(),
-        load: Vec::new(),
-        site: Vec::new(),
-        visual: Vec::new(),
-        ground: None,
-        collision: Vec::new(),
-        contact_pair: Vec::new(),
-        self_collision: false,
-    };
+    let empty = empty_spec("robot".into(), String::new());
     match roots.as_slice() {
         [_] => {}
         [] if robot.links.is_empty() => {
@@ -230,21 +217,12 @@ pub(crate) fn spec(
         if id != *original {
             out.renamed.push(("body", id.clone(), original.clone()));
         }
-        spec.body.push(BodySpec {
-            name: id.clone(),
-            mass: 0.0,
-            com: [0.0; 3],
-            inertia: InertiaSpec::Full([0.0; 6]),
-            position: None,
-            orientation: None,
-            velocity: None,
-            angular_velocity: None,
-            description: if id == *original {
-                String::new()
-            } else {
-                format!("URDF link \"{original}\"")
-            },
-        });
+        let description = if id == *original {
+            String::new()
+        } else {
+            format!("URDF link \"{original}\"")
+        };
+        spec.body.push(massless_body(id.clone(), description));
         parts.push(Vec::new());
         out.merged.push((id, vec![original.clone()]));
         out.body_lines.push(robot.links[link].line);
@@ -492,19 +470,7 @@ pub(crate) fn spec(
         out.collisions = added.sources;
     }
     for (b, p) in parts.iter().enumerate() {
-        let (m, c, j) = merge(p);
-        let j = clean(j, m);
-        let body = &mut spec.body[b];
-        body.mass = m;
-        body.com = [c.x, c.y, c.z];
-        body.inertia = InertiaSpec::Full([
-            j[(0, 0)],
-            j[(1, 1)],
-            j[(2, 2)],
-            j[(0, 1)],
-            j[(0, 2)],
-            j[(1, 2)],
-        ]);
+        set_inertial(&mut spec.body[b], p);
     }
     (spec, out)
 }

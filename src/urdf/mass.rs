@@ -16,60 +16,33 @@
 //! through its impossible links: those are the ones a refusal names.
 
 use super::robot::{at, Inertial, Pose, Robot};
-use crate::math::{matrix_to_rpy, rpy_to_matrix, Mat3, Vec3};
+pub(super) use crate::import::frame::Iso;
+pub(super) use crate::import::inertia::{clean, merge, Part};
+use crate::math::{rpy_to_matrix, Mat3, Vec3};
 use crate::mechanics::ranges;
 use crate::spec::{OriginSpec, Problem};
 
-/// A rigid placement: rotation and translation (frame in its host frame).
-#[derive(Clone, Copy, Debug)]
-pub(super) struct Iso {
-    pub r: Mat3,
-    pub p: Vec3,
-}
-
 impl Iso {
-    pub const IDENTITY: Iso = Iso {
-        r: Mat3::new(1.0, 0.0, 0.0, 0.0, 1.0, 0.0, 0.0, 0.0, 1.0),
-        p: Vec3::new(0.0, 0.0, 0.0),
-    };
-
-    pub fn of(pose: &Pose) -> Self {
+    /// The placement a URDF `origin xyz rpy` describes.
+    pub(super) fn of(pose: &Pose) -> Self {
         Self {
             r: rpy_to_matrix(&Vec3::from(pose.rpy)),
             p: Vec3::from(pose.xyz),
         }
     }
 
-    pub fn then(&self, b: &Iso) -> Iso {
-        Iso {
-            r: self.r * b.r,
-            p: self.p + self.r * b.p,
-        }
-    }
-
-    pub fn is_identity(&self) -> bool {
-        self.p == Vec3::zeros() && self.r == Mat3::identity()
-    }
-
     /// The spec's `origin` of this placement (the URDF's own numbers where nothing was
     /// composed).
-    pub fn origin(&self, written: Option<&Pose>) -> OriginSpec {
-        if let Some(w) = written {
-            return OriginSpec {
+    pub(super) fn origin(&self, written: Option<&Pose>) -> OriginSpec {
+        match written {
+            Some(w) => OriginSpec {
                 xyz: w.xyz,
                 rpy: w.rpy,
-            };
-        }
-        let rpy = matrix_to_rpy(&self.r);
-        OriginSpec {
-            xyz: [self.p.x, self.p.y, self.p.z],
-            rpy: [rpy.x, rpy.y, rpy.z],
+            },
+            None => self.origin_spec(),
         }
     }
 }
-
-/// One inertial in a body frame: `(mass, com, inertia about com)`.
-pub(super) type Part = (f64, Vec3, Mat3);
 
 /// The inertial contributions merged into one body, in the body frame.
 pub(super) type Parts = Vec<Part>;
@@ -94,45 +67,6 @@ fn placed_as(inertial: &Inertial, j: Mat3, frame: &Iso) -> Part {
 /// An inertial placed in a host frame: `(m, c, J_c)`.
 pub(super) fn placed(inertial: &Inertial, frame: &Iso) -> Part {
     placed_as(inertial, inertia_matrix(&inertial.inertia), frame)
-}
-
-/// `j` with the round-off of the file's numbers removed: entries below `1e-12 · max(|J|, m·1 m²)`
-/// of a tensor that is otherwise zero become zero, and principal moments negative by less than
-/// that become zero (real files write `ixz="2.4e-35"` for a point mass). Anything larger is
-/// left for validation to report.
-pub(super) fn clean(j: Mat3, m: f64) -> Mat3 {
-    let tiny = 1e-12 * j.amax().max(m);
-    if j.amax() <= tiny {
-        return Mat3::zeros();
-    }
-    let eig = j.symmetric_eigen();
-    if eig.eigenvalues.min() >= 0.0 || eig.eigenvalues.min() < -tiny {
-        return j;
-    }
-    let d = Mat3::from_diagonal(&eig.eigenvalues.map(|x| x.max(0.0)));
-    eig.eigenvectors * d * eig.eigenvectors.transpose()
-}
-
-/// Mass, centre of mass and inertia about it of the merged parts.
-pub(super) fn merge(parts: &[Part]) -> Part {
-    match parts {
-        [] => (0.0, Vec3::zeros(), Mat3::zeros()),
-        [one] => *one,
-        _ => {
-            let m: f64 = parts.iter().map(|p| p.0).sum();
-            let c = if m > 0.0 {
-                parts.iter().map(|p| p.1 * p.0).sum::<Vec3>() / m
-            } else {
-                Vec3::zeros()
-            };
-            let mut j = Mat3::zeros();
-            for (mi, ci, ji) in parts {
-                let d = ci - c;
-                j += ji + (Mat3::identity() * d.norm_squared() - d * d.transpose()) * *mi;
-            }
-            (m, c, (j + j.transpose()) * 0.5)
-        }
-    }
 }
 
 /// `E = ½ tr(J) I − J`: the second moments of the mass about the centre of mass.

@@ -47,17 +47,16 @@
 mod contacts;
 mod lower;
 mod mass;
-mod names;
 mod on_ground;
 mod options;
 mod robot;
 mod write;
-mod xml;
 
 pub use lower::Outcome;
 pub use options::{Base, ImportOptions};
 pub use write::{in_urdf_terms, to_toml};
 
+use crate::import::xml;
 use crate::spec::{Problem, Spec, SpecErrors};
 
 /// Reads URDF text into a spec. `origin` (the file name) prefixes every message and goes into

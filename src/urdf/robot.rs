@@ -3,7 +3,7 @@
 //! Geometry is not needed by the dynamics: a `<visual>` or `<collision>` that cannot be read is
 //! dropped with a warning (its line and what is wrong), never a problem.
 
-use super::xml::Element;
+use crate::import::xml::Element;
 use crate::spec::Problem;
 
 /// A placement `origin xyz rpy` (m; rad, fixed-axis roll, pitch, yaw).

@@ -5,6 +5,7 @@
 //! naming the URDF elements it came from (and one before the ground saying what it holds).
 
 use super::lower::Outcome;
+use crate::import::toml_text::shortest_numbers;
 use crate::spec::Spec;
 
 /// TOML text of `spec` with the import's comments and notes.
@@ -96,36 +97,6 @@ pub fn to_toml(spec: &Spec, outcome: &Outcome) -> Result<String, String> {
         out.push('\n');
     }
     Ok(out)
-}
-
-/// `line` with every float written in the shorter of its two round-trip forms (`1e-10`, not
-/// `0.0000000001`); lines holding strings are left as they are.
-fn shortest_numbers(line: &str) -> String {
-    if line.contains(['"', '\'']) || !line.contains('=') {
-        return line.to_string();
-    }
-    let mut out = String::with_capacity(line.len());
-    let mut token = String::new();
-    let flush = |token: &mut String, out: &mut String| {
-        let short = token
-            .parse::<f64>()
-            .ok()
-            .filter(|_| token.contains('.'))
-            .map(|x| format!("{x:?}"))
-            .filter(|s| s.len() < token.len());
-        out.push_str(short.as_deref().unwrap_or(token));
-        token.clear();
-    };
-    for c in line.chars() {
-        if c.is_ascii_alphanumeric() || matches!(c, '.' | '-' | '+' | '_') {
-            token.push(c);
-        } else {
-            flush(&mut token, &mut out);
-            out.push(c);
-        }
-    }
-    flush(&mut token, &mut out);
-    out
 }
 
 /// Problems of an imported spec (validated after import) told in the URDF's terms: the path

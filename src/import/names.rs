@@ -1,4 +1,4 @@
-//! Deterministic identifiers from URDF names (interface.md §3): every character outside
+//! Deterministic identifiers from URDF and MJCF names (interface.md §3): every character outside
 //! `[A-Za-z0-9_]` becomes `_`, a leading digit (or an empty name) is prefixed with `_`, and a
 //! name already taken (or reserved: `world` for bodies) gets the smallest suffix `_2`, `_3`, …
 //! that is free. Names are given out in document order, so the same file always gives the

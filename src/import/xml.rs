@@ -1,16 +1,20 @@
 //! A minimal element tree of an XML document with the line of every element (quick-xml):
-//! enough for URDF, whose content lives in elements and attributes, never in text.
+//! enough for URDF and MJCF, whose content lives in elements and attributes, never in text.
+
+use std::rc::Rc;
 
 use quick_xml::events::{BytesStart, Event};
 use quick_xml::Reader;
 
-/// One element: name, attributes in document order, children, and its line (1-based).
+/// One element: name, attributes in document order, children, its line (1-based) and the file
+/// it was read from (empty for the file being read; set by readers that join files).
 #[derive(Clone, Debug, Default)]
 pub(crate) struct Element {
     pub name: String,
     pub attrs: Vec<(String, String)>,
     pub children: Vec<Element>,
     pub line: usize,
+    pub file: Rc<str>,
 }
 
 impl Element {
@@ -58,6 +62,7 @@ fn element(start: &BytesStart, line: usize) -> Result<Element, String> {
         attrs,
         children: Vec::new(),
         line,
+        file: Rc::from(""),
     })
 }
 
