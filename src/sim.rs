@@ -373,6 +373,20 @@ impl Simulation {
         self.advance_refreshed(h, true)
     }
 
+    /// The earliest event crossed from `self.sub` to the state at a fraction in
+    /// `(EVENT_START, hi)` of that step (`mechanics::first_event`).
+    fn event_since_sub(&self, hi: f64) -> Option<(f64, Event)> {
+        first_event(
+            &self.model,
+            &self.sub.q,
+            &self.sub.angles,
+            &self.state.q,
+            &self.state.angles,
+            EVENT_START,
+            hi,
+        )
+    }
+
     /// After a sub-step of size `h` from `self.sub`: if it crossed an event, the sub-step
     /// retaken to end on it, and its size; `None` without an event.
     ///
@@ -383,16 +397,7 @@ impl Simulation {
     /// the crossing. An earlier crossing of another limit or contact found on the way takes
     /// over the search.
     fn land_on_event(&mut self, h: f64) -> Result<Option<f64>, StepError> {
-        let hi = 1.0 + 1e-12;
-        let Some((_, mut ev)) = first_event(
-            &self.model,
-            &self.sub.q,
-            &self.sub.angles,
-            &self.state.q,
-            &self.state.angles,
-            EVENT_START,
-            hi,
-        ) else {
+        let Some((_, mut ev)) = self.event_since_sub(1.0 + 1e-12) else {
             return Ok(None);
         };
         let pen = |sim: &Self, ev: Event, of_sub: bool| {
@@ -416,15 +421,7 @@ impl Simulation {
             step_state(&self.model, &mut self.state, tau)?;
             at = tau;
             // another event crossed earlier within the retake takes over
-            if let Some((theta, other)) = first_event(
-                &self.model,
-                &self.sub.q,
-                &self.sub.angles,
-                &self.state.q,
-                &self.state.angles,
-                EVENT_START,
-                1.0,
-            ) {
+            if let Some((theta, other)) = self.event_since_sub(1.0) {
                 if other != ev && theta < 1.0 {
                     ev = other;
                     (a, fa) = (0.0, pen(self, ev, true));
@@ -609,17 +606,7 @@ impl Simulation {
                 Ok(Verdict::Accept) => {
                     done += h;
                     remaining = if last { 0.0 } else { remaining - h };
-                    let event = early
-                        && first_event(
-                            &self.model,
-                            &self.sub.q,
-                            &self.sub.angles,
-                            &self.state.q,
-                            &self.state.angles,
-                            EVENT_START,
-                            1.0 + 1e-12,
-                        )
-                        .is_some();
+                    let event = early && self.event_since_sub(1.0 + 1e-12).is_some();
                     if event && remaining > 0.0 {
                         // the accepted step retaken to end on the event (as a fixed step)
                         match self.land_on_event(h) {

@@ -5,7 +5,7 @@
 mod common;
 
 use common::spec_model;
-use common::trees::{ALL_KINDS, FLOATING};
+use common::trees::{ALL_KINDS, FLOATING, ROTOR};
 use triad::mechanics::{step, Model, Operating, State};
 
 /// Every joint kind that takes an armature gets one (the spherical joint j5 cannot).
@@ -109,25 +109,8 @@ fn rotors_accelerate_as_the_minimal_dynamics_says() {
 /// integrated exactly), and `energy = work` exactly, the rotor's `½ a ω²` included.
 #[test]
 fn a_driven_rotor_turns_as_its_total_inertia_says() {
-    let text = r#"
-name = "Rotor"
-gravity = [0.0, 0.0, 0.0]
-[solver]
-max_step = 1e-3
-[[body]]
-name = "disc"
-mass = 2.0
-inertia = [0.02, 0.02, 0.04]
-[[joint]]
-name = "shaft"
-type = "revolute"
-parent = "world"
-child = "disc"
-axis = [0.0, 0.0, 1.0]
-actuated = true
-armature = 0.06
-"#;
-    let (m, mut s): (Model, State) = spec_model(text);
+    let text = format!("{ROTOR}armature = 0.06\n");
+    let (m, mut s): (Model, State) = spec_model(&text);
     s.inputs_mut()[0] = 0.5;
     for _ in 0..1000 {
         step(&m, &mut s, 1e-3).unwrap();

@@ -6,30 +6,11 @@
 mod common;
 
 use common::spec_model;
-use common::trees::ALL_KINDS;
+use common::trees::{ALL_KINDS, ROTOR};
 use triad::mechanics::{step, Model, Operating, State};
 
 fn rotor(friction: f64) -> String {
-    format!(
-        r#"
-name = "Rotor"
-gravity = [0.0, 0.0, 0.0]
-[solver]
-max_step = 1e-3
-[[body]]
-name = "disc"
-mass = 2.0
-inertia = [0.02, 0.02, 0.04]
-[[joint]]
-name = "shaft"
-type = "revolute"
-parent = "world"
-child = "disc"
-axis = [0.0, 0.0, 1.0]
-actuated = true
-friction = {friction}
-"#
-    )
+    format!("{ROTOR}friction = {friction}\n")
 }
 
 fn run(m: &Model, s: &mut State, steps: usize) -> Vec<f64> {

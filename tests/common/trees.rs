@@ -1,4 +1,5 @@
-//! Tree models with every joint type and load, shared by the linear-model tests.
+//! Tree models shared by the linear-model and joint-space tests: every joint type and load, a
+//! floating base, a rotor.
 
 /// A chain of every joint type with springs, dampers and inputs, off its rest state.
 pub const ALL_KINDS: &str = r#"
@@ -152,4 +153,24 @@ initial = { q = -0.3, qd = 0.4 }
 body = "base"
 torque = true
 force = true
+"#;
+
+/// A disc on an actuated vertical shaft without gravity (inertia 0.04 kg·m² about it); the
+/// joint-space terms are appended to its `[[joint]]` table by the tests.
+pub const ROTOR: &str = r#"
+name = "Rotor"
+gravity = [0.0, 0.0, 0.0]
+[solver]
+max_step = 1e-3
+[[body]]
+name = "disc"
+mass = 2.0
+inertia = [0.02, 0.02, 0.04]
+[[joint]]
+name = "shaft"
+type = "revolute"
+parent = "world"
+child = "disc"
+axis = [0.0, 0.0, 1.0]
+actuated = true
 "#;
