@@ -81,33 +81,25 @@ fn joint_parameters(b: &mut Builder, joint: usize, j: &JointDef) {
         Accessor::Damping(joint),
     );
     limit_parameters(b, joint, j);
-    if j.armature > 0.0 {
-        let unit = if j.kind == JointType::Prismatic {
-            "kg"
-        } else {
-            "kg.m2"
-        };
-        b.fixed(
-            format!("joint.{n}.armature"),
-            j.armature,
-            Some(unit),
-            format!("rotor inertia of joint {n} in joint space on each coordinate (kg.m2 on angles, kg on slides): adds armature q'^2/2 of kinetic energy"),
-            Accessor::Armature(joint),
-        );
-    }
-    if j.friction > 0.0 {
-        let unit = if j.kind == JointType::Prismatic {
-            "N"
-        } else {
-            "N.m"
-        };
-        b.fixed(
-            format!("joint.{n}.friction"),
-            j.friction,
-            Some(unit),
-            format!("Coulomb friction of joint {n} on each coordinate (N.m on angles, N on slides): sticks below it, slides at it; its loss is counted in system.work"),
-            Accessor::Friction(joint),
-        );
+    // joint-space terms, declared where set: (name, value, units on slides / angles, what)
+    let slide = j.kind == JointType::Prismatic;
+    let terms = [
+        ("armature", j.armature, ["kg", "kg.m2"], Accessor::Armature(joint),
+         "rotor inertia of joint {n} in joint space on each coordinate (kg.m2 on angles, kg on slides): adds armature q'^2/2 of kinetic energy"),
+        ("friction", j.friction, ["N", "N.m"], Accessor::Friction(joint),
+         "Coulomb friction of joint {n} on each coordinate (N.m on angles, N on slides): sticks below it, slides at it; its loss is counted in system.work"),
+    ];
+    for (name, value, units, acc, what) in terms {
+        if value > 0.0 {
+            let unit = units[usize::from(!slide)];
+            b.fixed(
+                format!("joint.{n}.{name}"),
+                value,
+                Some(unit),
+                what.replace("{n}", n),
+                acc,
+            );
+        }
     }
     if j.kind != JointType::Spherical {
         let per = per.replace(".s", "");

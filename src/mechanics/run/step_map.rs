@@ -67,12 +67,9 @@ pub fn finish_step_map(model: &Model, state: &mut State) -> Result<StepMap, Stri
         .ok_or("no step tangent was carried")?;
     let end = Operating::of(model, state).map_err(|e| e.to_string())?;
     let n = end.q.len();
-    let cols = tangent.cols();
-    let nodal = NodalColumns {
-        cols,
-        xi: (0..cols).flat_map(|c| tangent.xi(c).to_vec()).collect(),
-        dv: (0..cols).flat_map(|c| tangent.dv(c).to_vec()).collect(),
-    };
+    // the columns are stored as the read-off takes them (column-major)
+    let Tangent { cols, xi, dv, .. } = *tangent;
+    let nodal = NodalColumns { cols, xi, dv };
     let dx = end
         .dynamics
         .readoff_tangent(&end.q, &state.q, &state.v, &nodal)?;

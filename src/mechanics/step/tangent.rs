@@ -181,6 +181,9 @@ impl Tangent {
         let nin = model.inputs.len();
         let mut ru = vec![0.0; 6 * nb * nin];
         let mut inputs = held.inputs.to_vec();
+        // one scratch copy: a residual evaluation rewrites every right-hand side it reads
+        let mut wr = ws.clone();
+        wr.mu.copy_from_slice(mu);
         for i in 0..nin {
             let used = (0..self.cols).any(|c| self.du[c * nin + i] != 0.0);
             let s = step_for(model, i, held.inputs[i]);
@@ -195,8 +198,6 @@ impl Tangent {
                     damping: held.damping,
                     stiffness: held.stiffness,
                 };
-                let mut wr = ws.clone();
-                wr.mu.copy_from_slice(mu);
                 evaluate(model, &mut wr, &hi, h, Mode::Residual);
                 for b in 0..nb {
                     for k in 0..6 {

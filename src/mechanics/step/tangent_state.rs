@@ -56,26 +56,6 @@ impl Tangent {
         }
     }
 
-    /// Number of columns.
-    #[must_use]
-    pub fn cols(&self) -> usize {
-        self.cols
-    }
-
-    /// Column `c`'s twist increments (6 per body).
-    #[must_use]
-    pub fn xi(&self, c: usize) -> &[f64] {
-        let n = self.xi.len() / self.cols.max(1);
-        &self.xi[c * n..(c + 1) * n]
-    }
-
-    /// Column `c`'s nodal velocity perturbation (12 per body).
-    #[must_use]
-    pub fn dv(&self, c: usize) -> &[f64] {
-        let n = self.dv.len() / self.cols.max(1);
-        &self.dv[c * n..(c + 1) * n]
-    }
-
     /// Back to the start of the step in progress.
     pub(crate) fn rewind(&mut self) {
         self.xi.copy_from_slice(&self.start.0);
