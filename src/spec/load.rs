@@ -221,6 +221,12 @@ const COLLISION: &[Field] = &[
     opt("damping", NUM),
 ];
 const PAIR: &[Field] = &[req("a", TEXT), req("b", TEXT)];
+const COUPLING: &[Field] = &[
+    req("a", TEXT),
+    req("b", TEXT),
+    opt("ratio", NUM),
+    opt("offset", NUM),
+];
 const TOP: &[Field] = &[
     req("name", TEXT),
     opt("description", TEXT),
@@ -236,6 +242,7 @@ const TOP: &[Field] = &[
     opt("collision", Check::Tables(COLLISION)),
     opt("contact_pair", Check::Tables(PAIR)),
     opt("self_collision", BOOL),
+    opt("coupling", Check::Tables(COUPLING)),
 ];
 
 fn join(path: &str, key: &str) -> String {

@@ -2,8 +2,9 @@
 
 use crate::math::{matrix_to_quat, quat_to_matrix, rpy_to_matrix, Mat3, Vec3};
 use crate::mechanics::{
-    BodyDef, BodyLoadDef, ContactDef, ContactLaw, Frame, FreeBodyInitial, GroundDef, JointDef,
-    JointInitial, JointLimits, JointType, ModelDef, ShapeDef, ShapeKind, SiteDef, SolverSettings,
+    BodyDef, BodyLoadDef, ContactDef, ContactLaw, CouplingDef, Frame, FreeBodyInitial, GroundDef,
+    JointDef, JointInitial, JointLimits, JointType, ModelDef, ShapeDef, ShapeKind, SiteDef,
+    SolverSettings,
 };
 
 use super::schema::{JointKind, JointSpec, OriginSpec, Spec};
@@ -166,6 +167,42 @@ fn initial(j: &JointSpec) -> JointInitial {
     }
 }
 
+/// The couplings of `spec` as joint indices of the lowered `joints`; each follower's initial
+/// `q`, `qd` set from its leader's (`q_b = r q_a + o`, `q̇_b = r q̇_a`), leaders first along a
+/// chain of couplings. Unknown names (reported by validation) are left out.
+fn couplings(spec: &Spec, joints: &mut [JointDef]) -> Vec<CouplingDef> {
+    let at = |name: &str| joints.iter().position(|j| j.name == name);
+    let out: Vec<CouplingDef> = spec
+        .coupling
+        .iter()
+        .filter_map(|c| {
+            Some(CouplingDef {
+                a: at(&c.a)?,
+                b: at(&c.b)?,
+                ratio: c.ratio,
+                offset: c.offset,
+            })
+        })
+        .collect();
+    // a follower's state from its leader's, repeated so that a chain settles in any order
+    for _ in 0..out.len() {
+        for c in &out {
+            let JointInitial::Coords { q, qd } = &joints[c.a].initial else {
+                continue;
+            };
+            let (qa, qda) = (
+                q.first().copied().unwrap_or(0.0),
+                qd.first().copied().unwrap_or(0.0),
+            );
+            joints[c.b].initial = JointInitial::Coords {
+                q: vec![c.ratio * qa + c.offset],
+                qd: vec![c.ratio * qda],
+            };
+        }
+    }
+    out
+}
+
 fn limits(j: &JointSpec) -> JointLimits {
     let d = JointLimits::default();
     JointLimits {
@@ -205,7 +242,7 @@ pub(crate) fn build(spec: &Spec) -> (ModelDef, SolverSettings) {
         .iter()
         .filter(|j| !j.is_loop_closing())
         .chain(spec.joint.iter().filter(|j| j.is_loop_closing()));
-    let joints = ordered
+    let mut joints: Vec<JointDef> = ordered
         .map(|j| JointDef {
             name: j.name.clone(),
             kind: joint_type(j.kind),
@@ -270,7 +307,9 @@ pub(crate) fn build(spec: &Spec) -> (ModelDef, SolverSettings) {
         })
         .collect();
     let contact = contact(spec, &index);
+    let couplings = couplings(spec, &mut joints);
     let def = ModelDef {
+        couplings,
         contact,
         gravity: Vec3::from(spec.gravity),
         bodies,

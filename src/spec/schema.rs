@@ -64,6 +64,32 @@ pub struct Spec {
     /// Every pair of shapes on different bodies touches, but for bodies joined by a joint.
     #[serde(default, skip_serializing_if = "std::ops::Not::not")]
     pub self_collision: bool,
+    /// Joint couplings (`[[coupling]]`): joint `b` follows joint `a`.
+    #[serde(default, skip_serializing_if = "Vec::is_empty")]
+    pub coupling: Vec<CouplingSpec>,
+}
+
+/// `[[coupling]]`: joint `b` follows joint `a`, `q_b = ratio · q_a + offset` (two revolute or
+/// two prismatic tree joints; URDF `<mimic>`, MJCF `<equality joint>` with a linear
+/// `polycoef`), held exactly. The follower has no input of its own and its initial `q`, `qd`
+/// follow from the leader's.
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct CouplingSpec {
+    /// The leading joint.
+    pub a: String,
+    /// The following joint.
+    pub b: String,
+    /// `∂q_b/∂q_a` (finite, non-zero; default 1).
+    #[serde(default = "one")]
+    pub ratio: f64,
+    /// `q_b` at `q_a = 0`, rad or m (default 0).
+    #[serde(default)]
+    pub offset: f64,
+}
+
+fn one() -> f64 {
+    1.0
 }
 
 fn default_friction() -> f64 {

@@ -13,6 +13,7 @@ use common::check_finite;
 
 mod common;
 mod contact;
+mod couplings;
 mod joints;
 mod salvage;
 
@@ -270,6 +271,7 @@ pub(crate) fn structure(spec: &Spec) -> Report {
     sites(spec, &mut report, &body_index);
     visuals(spec, &mut report, &body_index);
     contact::check(spec, &mut report, &body_index);
+    couplings::check(spec, &mut report);
     if spec.body.is_empty() {
         report.push("body", "the model has no bodies: add at least one [[body]]");
     }

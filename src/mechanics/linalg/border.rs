@@ -84,21 +84,22 @@ pub(crate) struct Border {
 impl Border {
     /// Border layout and storage of a spanning tree with loop-closing joints: `tree_rows[b]`
     /// is the number of rows of body `b`'s tree joint (0 for a root), `loops[j]` is
-    /// `Some((rows, parent, child))` for a joint `j` that closes a loop (`parent` `None`: the
-    /// world) and `None` for a tree joint.
-    pub fn new(tree_rows: &[usize], loops: &[Option<(usize, Option<usize>, usize)>]) -> Self {
+    /// `Some((rows, bodies))` for a row group `j` in the border (a joint that closes a loop:
+    /// its parent body, if any, and child; a coupling: the bodies of its two joints) and
+    /// `None` for a tree joint.
+    pub fn new(tree_rows: &[usize], loops: &[Option<(usize, Vec<usize>)>]) -> Self {
         let nb = tree_rows.len();
         let mut lrow = vec![None; loops.len()];
         let mut slot = vec![None; nb];
         let mut touched = Vec::new();
         let mut k = 0;
         for (j, lj) in loops.iter().enumerate() {
-            let Some((rows, parent, child)) = *lj else {
+            let Some((rows, bodies)) = lj else {
                 continue;
             };
             lrow[j] = Some(k);
             k += rows;
-            for b in parent.into_iter().chain([child]) {
+            for &b in bodies {
                 if slot[b].is_none() {
                     slot[b] = Some(touched.len());
                     touched.push(b);

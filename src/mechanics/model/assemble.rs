@@ -119,6 +119,7 @@ impl Model {
             parent: vec![None; def.bodies.len()],
             tree_joint: vec![None; def.bodies.len()],
             nrows: 0,
+            couplings: Vec::new(),
             nturn: 0,
             narm: 0,
             nfric: 0,
@@ -339,8 +340,11 @@ pub(crate) fn build(model: &mut Model, joint_input: &[Option<usize>]) -> Result<
         row0 += nrow;
         turn0 += nturn;
     }
-    model.nrows = row0;
     model.nturn = turn0;
+    model.angles0 = angles0.clone();
+    model.couplings = super::coupling::build(model, &def, row0)?;
+    model.nrows = row0 + model.couplings.len();
+    project_rates |= super::coupling::rates_violated(model);
     model.narm = arm0;
     model.nfric = fric0;
     model.angles0 = angles0;

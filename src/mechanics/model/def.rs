@@ -322,6 +322,23 @@ pub struct ModelDef {
     pub sites: Vec<SiteDef>,
     /// The ground, collision shapes and the pairs of shapes that touch (none by default).
     pub contact: ContactDef,
+    /// Joint couplings `q_b = ratio · q_a + offset` (none by default).
+    pub couplings: Vec<CouplingDef>,
+}
+
+/// A coupling of two joints of the same kind with one coordinate each (revolute or prismatic
+/// tree joints): joint `b` follows joint `a`, `q_b = ratio · q_a + offset` (rad or m), held as
+/// an exact constraint on the joint coordinates (`step::coupling`).
+#[derive(Clone, Debug, PartialEq)]
+pub struct CouplingDef {
+    /// The leading joint (index in [`ModelDef::joints`]).
+    pub a: usize,
+    /// The following joint.
+    pub b: usize,
+    /// `∂q_b/∂q_a` (dimensionless, finite, non-zero).
+    pub ratio: f64,
+    /// `q_b` at `q_a = 0`, rad or m.
+    pub offset: f64,
 }
 
 /// The laws of a contact (see `model::contact_law`).

@@ -5,7 +5,7 @@
 //!   primitive (`constraint`: nodes `[φ, d1, d2, d3]`, `LinVec`, `DotRow`), rows in sparse form
 //!   (`sparse_row`);
 //! - joints as rows of that primitive (`joint`), the initial configuration (`kinematics`),
-//!   loop closures (`loops`), redundant loop rows (`redundancy`) and whether bodies without
+//!   loop closures (`loops`), joint couplings (`coupling`), redundant loop rows (`redundancy`) and whether bodies without
 //!   mass leave the motion determined (`determinacy`);
 //! - the runtime [`runtime::Model`] and its set-up (`assemble`);
 //! - the director kernels shared by the step and the projection (`kernels`: reciprocal basis,
@@ -29,6 +29,7 @@ pub mod body;
 pub mod constraint;
 pub mod contact;
 pub(crate) mod contact_law;
+pub(crate) mod coupling;
 pub mod def;
 pub(crate) mod determinacy;
 pub(crate) mod error;

@@ -21,7 +21,8 @@
 //! with its child, couplings along tree edges), so it is solved by the same O(N) tree
 //! elimination; the rows of loop-closing joints form the border of that solve (`border`, the same
 //! bordered solve as the Newton step; the dense LU only as the test oracle). Redundant (dropped)
-//! loop rows stay dropped.
+//! loop rows stay dropped. A joint coupling `q_b = r q_a + o` adds the row `q̇_b − r q̇_a = 0`
+//! (`coupling`), in the border like a loop row.
 //!
 //! Properties: the residual `v − v'` is M-orthogonal to every admissible velocity, in
 //! particular to superposed rigid motions whenever these are admissible, so every momentum that
@@ -36,7 +37,7 @@ use crate::mechanics::linalg::tree::{solve_tree, Block};
 
 use super::constraint::{body_nodes, Nodes};
 use super::kernels::{node_block, row_q};
-use super::runtime::Model;
+use super::runtime::{DofRt, Model};
 use super::sink::Sink;
 use crate::math::Vec3;
 
@@ -155,6 +156,44 @@ pub(crate) fn project_velocities(model: &Model, q: &[f64], v: &[f64], pw: &mut P
                 let ga = row_q(&grad[..4], &da);
                 sink.mu_body(j, k, a, &ga);
                 sink.body_mu(a, j, k, &ga);
+            }
+        }
+    }
+    // coupling rows q̇_b − r q̇_a: ṫ = (c ∇s − s ∇c)·v/(s² + c²) of a turn, ∇s·v of a slide
+    let nj = model.joints.len();
+    for (c, cp) in model.couplings.iter().enumerate() {
+        for (j, w) in [(cp.b, 1.0), (cp.a, -cp.ratio)] {
+            let jt = &model.joints[j];
+            let qa = jt.parent.map_or(zero, |a| body_nodes(q, a));
+            let qb = body_nodes(q, jt.child);
+            let da = [qa[1], qa[2], qa[3]];
+            let db = [qb[1], qb[2], qb[3]];
+            let mut rate = [Vec3::zeros(); 8];
+            match &jt.dofs[0] {
+                DofRt::Turn(tr) => {
+                    let (sv, cv) = (tr.sin.eval(&qa, &qb), tr.cos.eval(&qa, &qb));
+                    let r2 = sv * sv + cv * cv;
+                    tr.sin.gradient(&qa, &qb, &mut grad);
+                    let mut gc = [Vec3::zeros(); 8];
+                    tr.cos.gradient(&qa, &qb, &mut gc);
+                    for n in 0..8 {
+                        rate[n] = (grad[n] * cv - gc[n] * sv) * (w / r2);
+                    }
+                }
+                DofRt::Slide(row) => {
+                    row.gradient(&qa, &qb, &mut grad);
+                    for n in 0..8 {
+                        rate[n] = grad[n] * w;
+                    }
+                }
+            }
+            let gb = row_q(&rate[4..], &db);
+            sink.mu_body(nj + c, 0, jt.child, &gb);
+            sink.body_mu(jt.child, nj + c, 0, &gb);
+            if let Some(a) = jt.parent {
+                let ga = row_q(&rate[..4], &da);
+                sink.mu_body(nj + c, 0, a, &ga);
+                sink.body_mu(a, nj + c, 0, &ga);
             }
         }
     }

@@ -94,6 +94,22 @@ pub(crate) enum DofRt {
     Turn(TurnRt),
 }
 
+/// A coupling `q_b = ratio · q_a + offset` of two one-coordinate joints as the step sees it
+/// (`step::coupling`): one row of the multiplier system.
+#[derive(Clone, Copy, Debug)]
+pub(crate) struct CouplingRt {
+    /// The leading joint.
+    pub a: usize,
+    /// The following joint.
+    pub b: usize,
+    /// `∂q_b/∂q_a`.
+    pub ratio: f64,
+    /// `q_b` at `q_a = 0`, rad or m.
+    pub offset: f64,
+    /// Index of its multiplier in the global multiplier vector (after every joint row).
+    pub row: usize,
+}
+
 /// A joint as the step sees it.
 #[derive(Clone, Debug)]
 pub(crate) struct JointRt {
@@ -151,6 +167,8 @@ pub struct Model {
     pub(crate) tree_joint: Vec<Option<usize>>,
     /// Number of active joint rows.
     pub(crate) nrows: usize,
+    /// Joint couplings; their rows are the last `couplings.len()` of the `nrows`.
+    pub(crate) couplings: Vec<CouplingRt>,
     /// Number of turn dofs (unwrapping memory length).
     pub(crate) nturn: usize,
     /// Number of joint coordinates with a rotor inertia (the state's rotor rates).
@@ -304,37 +322,53 @@ impl Model {
     }
 
     /// The border of the model's loop-closing joints (those that are not the tree joint of
-    /// their child) for the bordered tree solve; empty for a tree.
+    /// their child) and couplings (row groups after the joints') for the bordered tree solve;
+    /// empty for a tree without couplings.
     pub(crate) fn border(&self) -> Border {
         let tree_rows: Vec<usize> = self
             .tree_joint
             .iter()
             .map(|tj| tj.map_or(0, |j| self.joints[j].rows.len()))
             .collect();
-        let loops: Vec<_> = self
+        let mut loops: Vec<_> = self
             .joints
             .iter()
             .enumerate()
             .map(|(j, jt)| {
-                (self.tree_joint[jt.child] != Some(j)).then_some((
-                    jt.rows.len(),
-                    jt.parent,
-                    jt.child,
-                ))
+                (self.tree_joint[jt.child] != Some(j)).then(|| {
+                    (
+                        jt.rows.len(),
+                        jt.parent.into_iter().chain([jt.child]).collect(),
+                    )
+                })
             })
             .collect();
+        // a coupling's row touches the bodies of both its joints
+        for c in &self.couplings {
+            let bodies = [c.a, c.b]
+                .iter()
+                .flat_map(|&j| {
+                    self.joints[j]
+                        .parent
+                        .into_iter()
+                        .chain([self.joints[j].child])
+                })
+                .collect();
+            loops.push(Some((1, bodies)));
+        }
         Border::new(&tree_rows, &loops)
     }
 }
 
 /// Whether the reduced iteration (`step::reduced`) covers `model`: a tree (no loop-closing
-/// joint) solved without the dense oracle.
+/// joint, no coupling) solved without the dense oracle.
 pub(crate) fn covers(model: &Model) -> bool {
-    model
-        .joints
-        .iter()
-        .enumerate()
-        .all(|(j, jt)| model.tree_joint[jt.child] == Some(j) && jt.dropped.is_empty())
+    model.couplings.is_empty()
+        && model
+            .joints
+            .iter()
+            .enumerate()
+            .all(|(j, jt)| model.tree_joint[jt.child] == Some(j) && jt.dropped.is_empty())
 }
 
 /// Whether the reduced Newton matrix of `model` is the exact Jacobian: no slide pair

@@ -65,48 +65,60 @@ impl Sink<'_> {
         }
     }
 
-    /// Adds column `col` (6 body rows of `a`) for multiplier `k` of joint `j`.
+    /// Offset of row group `j`'s first row in the multiplier vector and its tree child: the
+    /// rows of joint `j`, or for `j ≥` the number of joints those of coupling `j − joints`
+    /// (always in the border; no tree child).
+    fn group(&self, j: usize) -> (usize, usize) {
+        let m = self.model;
+        match m.joints.get(j) {
+            Some(jt) => (jt.row0, jt.child),
+            None => (m.couplings[j - m.joints.len()].row, usize::MAX),
+        }
+    }
+
+    /// Adds column `col` (6 body rows of `a`) for multiplier `k` of row group `j` (a joint,
+    /// or a coupling after the joints: [`Self::group`]).
     pub(crate) fn body_mu(&mut self, a: usize, j: usize, k: usize, col: &[f64; 6]) {
-        let jt = &self.model.joints[j];
+        let (row0, child) = self.group(j);
         if self.model.dense {
             let nd = self.nd;
-            let c = 6 * self.model.bodies.len() + jt.row0 + k;
+            let c = 6 * self.model.bodies.len() + row0 + k;
             for r in 0..6 {
                 self.dense[(6 * a + r) * nd + c] += col[r];
             }
         } else if let Some(l) = self.border.lrow[j] {
             self.border.add_col(a, l + k, col);
-        } else if a == jt.child {
+        } else if a == child {
             let d = &mut self.blocks[a].d;
             for r in 0..6 {
                 d[r * NMAX + 6 + k] += col[r];
             }
         } else {
-            let l = &mut self.blocks[jt.child].l;
+            let l = &mut self.blocks[child].l;
             for r in 0..6 {
                 l[r * NMAX + 6 + k] += col[r];
             }
         }
     }
 
-    /// Adds row `k` of joint `j` against `x_b`.
+    /// Adds row `k` of row group `j` (a joint, or a coupling: [`Self::group`]) against `x_b`.
     pub(crate) fn mu_body(&mut self, j: usize, k: usize, b: usize, row: &[f64; 6]) {
-        let jt = &self.model.joints[j];
+        let (row0, child) = self.group(j);
         if self.model.dense {
             let nd = self.nd;
-            let r = 6 * self.model.bodies.len() + jt.row0 + k;
+            let r = 6 * self.model.bodies.len() + row0 + k;
             for s in 0..6 {
                 self.dense[r * nd + 6 * b + s] += row[s];
             }
         } else if let Some(l) = self.border.lrow[j] {
             self.border.add_row(l + k, b, row);
-        } else if b == jt.child {
+        } else if b == child {
             let d = &mut self.blocks[b].d;
             for s in 0..6 {
                 d[(6 + k) * NMAX + s] += row[s];
             }
         } else {
-            let u = &mut self.blocks[jt.child].u;
+            let u = &mut self.blocks[child].u;
             for s in 0..6 {
                 u[(6 + k) * 6 + s] += row[s];
             }
@@ -115,15 +127,16 @@ impl Sink<'_> {
 }
 
 impl Sink<'_> {
-    /// Sets the right-hand side of row `k` of joint `j` to `v`.
+    /// Sets the right-hand side of row `k` of row group `j` (a joint, or a coupling:
+    /// [`Self::group`]) to `v`.
     pub(crate) fn rhs_row(&mut self, j: usize, k: usize, v: f64) {
-        let jt = &self.model.joints[j];
+        let (row0, child) = self.group(j);
         if self.model.dense {
-            self.drhs[6 * self.model.bodies.len() + jt.row0 + k] = v;
+            self.drhs[6 * self.model.bodies.len() + row0 + k] = v;
         } else if let Some(l) = self.border.lrow[j] {
             self.border.rc[l + k] = v;
         } else {
-            self.blocks[jt.child].r[6 + k] = v;
+            self.blocks[child].r[6 + k] = v;
         }
     }
 }

@@ -168,6 +168,8 @@ pub enum Unsupported {
     Contact,
     /// A joint has Coulomb friction.
     Friction(String),
+    /// A joint follows another through a coupling.
+    Coupling(String),
 }
 
 impl std::fmt::Display for Unsupported {
@@ -176,12 +178,13 @@ impl std::fmt::Display for Unsupported {
             Self::Loop(j) => write!(f, "joint '{j}' closes a kinematic loop; linear models of closed loops are not available yet"),
             Self::Contact => write!(f, "the model has collision shapes; linear models with contact are not available yet (build it without contacts, e.g. `--no-contacts` or without [[collision]])"),
             Self::Friction(j) => write!(f, "joint '{j}' has Coulomb friction, which has no derivative where the joint sticks; linearise without it (`--set joint.{j}.friction=0`)"),
+            Self::Coupling(j) => write!(f, "joint '{j}' follows another joint through a [[coupling]]; linear models of coupled joints are not available yet"),
         }
     }
 }
 
 /// Whether `def` has a minimal-coordinate dynamics here: a tree (no loop-closing joint) without
-/// collision shapes or joint friction.
+/// collision shapes, joint friction or couplings.
 ///
 /// # Errors
 /// [`Unsupported`] naming the first obstacle.
@@ -194,6 +197,9 @@ pub fn supported(def: &ModelDef) -> Result<(), Unsupported> {
     }
     if let Some(j) = def.joints.iter().find(|j| j.friction > 0.0) {
         return Err(Unsupported::Friction(j.name.clone()));
+    }
+    if let Some(c) = def.couplings.first() {
+        return Err(Unsupported::Coupling(def.joints[c.b].name.clone()));
     }
     Ok(())
 }

@@ -90,5 +90,18 @@ pub(crate) fn update(model: &Model, ws: &mut Work) -> (f64, f64) {
             dmu = dmu.max(dm.abs() * scale);
         }
     }
+    // coupling rows, always in the border (after the joints' row groups)
+    let nj = model.joints.len();
+    for (c, cp) in model.couplings.iter().enumerate() {
+        let br = &model.bodies[model.joints[cp.b].child];
+        let scale = br.fs.max(model.lc.max(1.0) * br.ms);
+        let dm = if model.dense {
+            ws.drhs[6 * nb + cp.row]
+        } else {
+            ws.border.rc[ws.border.lrow[nj + c].unwrap_or(0)]
+        };
+        ws.mu[cp.row] += dm;
+        dmu = dmu.max(dm.abs() * scale);
+    }
     (upd, dmu)
 }

@@ -15,7 +15,7 @@ use crate::mechanics::model::constraint::{body_nodes, DotRow, Nodes};
 use crate::mechanics::model::kernels::{
     linvec_jac, outer, project, push_torque, rotation_increment, row_q, torque_jac,
 };
-use crate::mechanics::model::runtime::{DofRt, Model};
+use crate::mechanics::model::runtime::{DofRt, Model, TurnRt};
 use crate::mechanics::model::sparse_row::SparseRow;
 
 /// The two bodies of a joint at the iterate: parent `a` (`None`: the world, whose nodes are
@@ -159,23 +159,13 @@ pub(crate) fn joint_loads(
         x_aa,
         x_bb,
     } = acc;
-    // coef ∇g(q̄) into the node forces and (Full) ½ coef S into the node couplings;
-    // returns ∇g(q̄) over the eight nodes (also used by the slide dofs)
-    let add_row = |row: &DotRow,
-                   coef: f64,
-                   fa: &mut [Vec3; 4],
-                   fb: &mut [Vec3; 4],
-                   cb: &mut [[f64; 16]],
-                   cab: &mut [f64; 16]| {
-        let sr = SparseRow::new(row, a.is_some());
-        let mut buf = [Vec3::zeros(); 8];
-        let grad = sr.grad_at(qa_bar, qb_bar, &mut buf);
-        sr.add_forces(grad, coef, fa, fb);
-        if jac {
-            sr.add_hessian(0.5 * coef, cb, a, bb, cab);
-        }
-        sr.expand(grad)
-    };
+    let add_row =
+        |row: &DotRow,
+         coef: f64,
+         fa: &mut [Vec3; 4],
+         fb: &mut [Vec3; 4],
+         cb: &mut [[f64; 16]],
+         cab: &mut [f64; 16]| { add_dot_row(row, coef, p, jac, (fa, fb, cb, cab)) };
     let c_d = held.damping[j];
     let k_s = held.stiffness[j];
     let mut turn = jt.turn0;
@@ -277,33 +267,8 @@ pub(crate) fn joint_loads(
                     let gs = add_row(&tr.sin, -hh * st.fs, fa, fb, &mut ws.cbody, cab);
                     let gc = add_row(&tr.cos, -hh * st.fc, fa, fb, &mut ws.cbody, cab);
                     if jac {
-                        // d(−hh f)/dx through (s₁, c₁): Σᵢⱼ −hh ∂fᵢ/∂j₁ P̄ᵀ∇i(q̄) ⊗ ∇j(q)Q
-                        let mut g1 = [Vec3::zeros(); 8];
-                        tr.sin.gradient(qa, qb, &mut g1);
-                        let (rs_b, rs_a) = (row_q(&g1[4..], d_b), row_q(&g1[..4], d_a));
-                        tr.cos.gradient(qa, qb, &mut g1);
-                        let (rc_b, rc_a) = (row_q(&g1[4..], d_b), row_q(&g1[..4], d_a));
-                        let mix = |ws_: f64, wc: f64, rs: &[f64; 6], rc: &[f64; 6]| {
-                            std::array::from_fn::<f64, 6, _>(|i| -hh * (ws_ * rs[i] + wc * rc[i]))
-                        };
-                        let j = st.jac;
-                        let (ms_b, mc_b) =
-                            (mix(j[0], j[1], &rs_b, &rc_b), mix(j[2], j[3], &rs_b, &rc_b));
-                        let (cs_b, cc_b) = (project(&gs[4..], dbar_b), project(&gc[4..], dbar_b));
-                        outer(x_bb, 1.0, &cs_b, &ms_b);
-                        outer(x_bb, 1.0, &cc_b, &mc_b);
-                        if a.is_some() {
-                            let (ms_a, mc_a) =
-                                (mix(j[0], j[1], &rs_a, &rc_a), mix(j[2], j[3], &rs_a, &rc_a));
-                            let (cs_a, cc_a) =
-                                (project(&gs[..4], dbar_a), project(&gc[..4], dbar_a));
-                            outer(x_ba, 1.0, &cs_b, &ms_a);
-                            outer(x_ba, 1.0, &cc_b, &mc_a);
-                            outer(x_ab, 1.0, &cs_a, &ms_b);
-                            outer(x_ab, 1.0, &cc_a, &mc_b);
-                            outer(x_aa, 1.0, &cs_a, &ms_a);
-                            outer(x_aa, 1.0, &cc_a, &mc_a);
-                        }
+                        let xs = (&mut *x_ab, &mut *x_ba, &mut *x_aa, &mut *x_bb);
+                        turn_jac(tr, p, (&gs, &gc), &st.jac, -hh, xs);
                     }
                 }
                 turn += 1;
@@ -351,6 +316,72 @@ pub(crate) fn joint_loads(
                 }
             }
         }
+    }
+}
+
+/// Adds `coef ∇g(q̄)` of `row` to the node forces `fa`, `fb` and (`jac`) `½ coef S` to the node
+/// couplings (`cb` per body, `cab` parent–child); returns `∇g(q̄)` over the eight nodes.
+pub(crate) fn add_dot_row(
+    row: &DotRow,
+    coef: f64,
+    p: &Pair,
+    jac: bool,
+    (fa, fb, cb, cab): (
+        &mut [Vec3; 4],
+        &mut [Vec3; 4],
+        &mut [[f64; 16]],
+        &mut [f64; 16],
+    ),
+) -> [Vec3; 8] {
+    let sr = SparseRow::new(row, p.a.is_some());
+    let mut buf = [Vec3::zeros(); 8];
+    let grad = sr.grad_at(&p.qa_bar, &p.qb_bar, &mut buf);
+    sr.add_forces(grad, coef, fa, fb);
+    if jac {
+        sr.add_hessian(0.5 * coef, cb, p.a, p.b, cab);
+    }
+    sr.expand(grad)
+}
+
+/// The Jacobian blocks of a turn load `scale (f_s ∇s(q̄) + f_c ∇c(q̄))` through the load's
+/// coefficients: `Σᵢⱼ scale ∂fᵢ/∂j₁ P̄ᵀ∇i(q̄) ⊗ ∇j(q)Q` with `dfs = [∂f_s/∂s₁, ∂f_s/∂c₁,
+/// ∂f_c/∂s₁, ∂f_c/∂c₁]` and the midpoint gradients `gs`, `gc` over the eight nodes (the
+/// Hessian of `s`, `c` at fixed coefficients is [`add_dot_row`]'s).
+pub(crate) fn turn_jac(
+    tr: &TurnRt,
+    p: &Pair,
+    (gs, gc): (&[Vec3; 8], &[Vec3; 8]),
+    dfs: &[f64; 4],
+    scale: f64,
+    (x_ab, x_ba, x_aa, x_bb): (
+        &mut [f64; 36],
+        &mut [f64; 36],
+        &mut [f64; 36],
+        &mut [f64; 36],
+    ),
+) {
+    let mut g1 = [Vec3::zeros(); 8];
+    tr.sin.gradient(&p.qa, &p.qb, &mut g1);
+    let (rs_b, rs_a) = (row_q(&g1[4..], &p.d_b), row_q(&g1[..4], &p.d_a));
+    tr.cos.gradient(&p.qa, &p.qb, &mut g1);
+    let (rc_b, rc_a) = (row_q(&g1[4..], &p.d_b), row_q(&g1[..4], &p.d_a));
+    let mix = |ws_: f64, wc: f64, rs: &[f64; 6], rc: &[f64; 6]| {
+        std::array::from_fn::<f64, 6, _>(|i| scale * (ws_ * rs[i] + wc * rc[i]))
+    };
+    let j = dfs;
+    let (ms_b, mc_b) = (mix(j[0], j[1], &rs_b, &rc_b), mix(j[2], j[3], &rs_b, &rc_b));
+    let (cs_b, cc_b) = (project(&gs[4..], &p.dbar_b), project(&gc[4..], &p.dbar_b));
+    outer(x_bb, 1.0, &cs_b, &ms_b);
+    outer(x_bb, 1.0, &cc_b, &mc_b);
+    if p.a.is_some() {
+        let (ms_a, mc_a) = (mix(j[0], j[1], &rs_a, &rc_a), mix(j[2], j[3], &rs_a, &rc_a));
+        let (cs_a, cc_a) = (project(&gs[..4], &p.dbar_a), project(&gc[..4], &p.dbar_a));
+        outer(x_ba, 1.0, &cs_b, &ms_a);
+        outer(x_ba, 1.0, &cc_b, &mc_a);
+        outer(x_ab, 1.0, &cs_a, &ms_b);
+        outer(x_ab, 1.0, &cc_a, &mc_b);
+        outer(x_aa, 1.0, &cs_a, &ms_a);
+        outer(x_aa, 1.0, &cc_a, &mc_a);
     }
 }
 

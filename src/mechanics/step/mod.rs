@@ -3,7 +3,8 @@
 //! - `work`: the workspace (`Work`), the loads held over a step (`Held`) and the solver's
 //!   memory;
 //! - the scaled EM residual and its Jacobian: `newton` (rows and bodies, the multiplier form),
-//!   `body_terms` (inertia and body loads), `joint_loads` (actuators, springs, dampers), `turn`
+//!   `body_terms` (inertia and body loads), `joint_loads` (actuators, springs, dampers),
+//!   `coupling` (the rows of joint couplings), `turn`
 //!   (the exact discrete gradient of a joint angle), `contact` (ground and body–body contact
 //!   forces, their work and the friction bristles), `increment` (the multiplier form's linear
 //!   solve and update);
@@ -20,6 +21,7 @@ pub(crate) mod body_terms;
 #[cfg(test)]
 mod border_tests;
 pub(crate) mod contact;
+pub(crate) mod coupling;
 pub(crate) mod error;
 pub(crate) mod finish;
 pub(crate) mod identity;

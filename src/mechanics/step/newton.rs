@@ -137,6 +137,9 @@ pub(crate) fn evaluate(model: &Model, ws: &mut Work, held: &Held, h: f64, mode: 
                 }
             }
         }
+        if !model.couplings.is_empty() {
+            res = res.max(super::coupling::couplings(model, ws, jac, &mut sink));
+        }
     }
     ws.dense = sink_dense;
     ws.blocks = sink_blocks;

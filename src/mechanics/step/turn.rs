@@ -126,6 +126,51 @@ pub(crate) fn turn_step(
     }
 }
 
+/// A constant generalised force `f` on a turn coordinate (a coupling's reaction): its step
+/// (`fs = f β c̄`, `fc = −f β s̄` and their partials in `(s₁, c₁)`), the unit coefficients
+/// `[β c̄, −β s̄]` (`∂(fs, fc)/∂f`) and `∂Δt/∂(s₁, c₁)`.
+#[derive(Clone, Copy, Debug)]
+pub(crate) struct TurnLoad {
+    /// The angle step and the load's coefficients.
+    pub step: TurnStep,
+    /// `[β c̄, −β s̄]`.
+    pub unit: [f64; 2],
+    /// `[∂Δt/∂s₁, ∂Δt/∂c₁]`.
+    pub ddt: [f64; 2],
+}
+
+/// The angle step from `[s₀, c₀]` with increments `[Δs, Δc]` under a constant generalised force
+/// `f` (N·m, or scaled residual units): [`turn_step`]'s formulas with `∂f = 0`.
+#[must_use]
+pub(crate) fn turn_load([s0, c0]: [f64; 2], [ds, dc]: [f64; 2], f: f64) -> TurnLoad {
+    let x = c0 * ds - s0 * dc;
+    let (s1, c1) = (s0 + ds, c0 + dc);
+    let y = c0 * c1 + s0 * s1;
+    let (b, bx, by) = beta(x, y);
+    let (sb, cb) = (s0 + 0.5 * ds, c0 + 0.5 * dc);
+    let r = x * x + y * y;
+    let ddt = [(y * c0 - x * s0) / r, (-y * s0 - x * c0) / r];
+    let db = [bx * c0 + by * s0, -bx * s0 + by * c0];
+    let fb = f * b;
+    let mut jac = [0.0; 4];
+    for v in 0..2 {
+        jac[v] = f * db[v] * cb;
+        jac[2 + v] = -f * db[v] * sb;
+    }
+    jac[1] += 0.5 * fb;
+    jac[2] -= 0.5 * fb;
+    TurnLoad {
+        step: TurnStep {
+            dt: b * x,
+            fs: fb * cb,
+            fc: -fb * sb,
+            jac,
+        },
+        unit: [b * cb, -b * sb],
+        ddt,
+    }
+}
+
 /// `u(q₁)·w(q₁) − u(q₀)·w(q₀) = Δu·w̄ + ū·Δw` of a row from the midpoint `ū, w̄` and the
 /// node increments (A: `da`, B: `db`), without the cancellation of subtracting two values.
 #[must_use]

@@ -8,7 +8,7 @@ use crate::mechanics::ranges;
 use crate::spec::error::{did_you_mean, Report};
 use crate::spec::schema::{JointKind, JointSpec, Spec};
 
-fn kind_name(k: JointKind) -> &'static str {
+pub(super) fn kind_name(k: JointKind) -> &'static str {
     crate::spec::lower::joint_type(k).name()
 }
 

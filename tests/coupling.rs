@@ -1,0 +1,356 @@
+//! Joint couplings (`[[coupling]]`, `q_b = ratio · q_a + offset`): the closed form of a geared
+//! pair, the coupling held at every step, `energy − work` and the momenta exact, a gripper on
+//! a free palm that closes symmetrically, and bad couplings refused.
+
+mod common;
+
+use common::spec_model;
+use triad::mechanics::{step, Model, State};
+use triad::spec::Spec;
+
+/// Two disks on the world about parallel vertical axes, `b` geared to `a` (ratio −2, offset
+/// 0.3), a torque of 0.5 N·m on `a`: `(I_a + r² I_b) q̈_a = τ`, so `q_a = ½ α t²`.
+const GEARS: &str = r#"
+name = "Gears"
+gravity = [0.0, 0.0, -9.81]
+[solver]
+max_step = 0.05
+[[body]]
+name = "wheel_a"
+mass = 2.0
+inertia = [0.1, 0.1, 0.2]
+[[body]]
+name = "wheel_b"
+mass = 0.5
+inertia = [0.03, 0.03, 0.05]
+[[joint]]
+name = "a"
+type = "revolute"
+parent = "world"
+child = "wheel_a"
+axis = [0.0, 0.0, 1.0]
+actuated = true
+[[joint]]
+name = "b"
+type = "revolute"
+parent = "world"
+child = "wheel_b"
+origin = { xyz = [0.6, 0.0, 0.0] }
+axis = [0.0, 0.0, 1.0]
+[[coupling]]
+a = "a"
+b = "b"
+ratio = -2.0
+offset = 0.3
+"#;
+
+/// A palm free in space with two fingers sliding towards each other along mirrored axes, the
+/// right one following the left (ratio 1), and a wrist pendulum coupled to nothing; no
+/// gravity, so every momentum is a first integral.
+const GRIPPER: &str = r#"
+name = "Gripper"
+gravity = [0.0, 0.0, 0.0]
+[solver]
+max_step = 0.02
+[[body]]
+name = "palm"
+mass = 1.0
+com = [0.0, 0.0, 0.05]
+inertia = [0.004, 0.003, 0.005]
+position = [0.1, -0.2, 0.5]
+orientation = [0.95, 0.1, -0.05, 0.2]
+velocity = [0.1, 0.0, -0.05]
+angular_velocity = [0.3, -0.2, 0.5]
+[[body]]
+name = "left"
+mass = 0.1
+com = [0.0, 0.0, -0.03]
+inertia = [2e-4, 1.5e-4, 1e-4]
+[[body]]
+name = "right"
+mass = 0.1
+com = [0.0, 0.0, -0.03]
+inertia = [2e-4, 1.5e-4, 1e-4]
+[[joint]]
+name = "finger_left"
+type = "prismatic"
+parent = "palm"
+child = "left"
+origin = { xyz = [0.0, 0.04, 0.0] }
+axis = [0.0, -1.0, 0.0]
+actuated = true
+initial = { q = 0.002, qd = 0.01 }
+[[joint]]
+name = "finger_right"
+type = "prismatic"
+parent = "palm"
+child = "right"
+origin = { xyz = [0.0, -0.04, 0.0] }
+axis = [0.0, 1.0, 0.0]
+[[coupling]]
+a = "finger_left"
+b = "finger_right"
+"#;
+
+fn set_inputs(s: &mut State, u: &[f64]) {
+    let n = s.inputs().len();
+    s.inputs_mut().copy_from_slice(&u[..n]);
+}
+
+fn q(s: &State, j: usize) -> f64 {
+    s.outputs().joints[j].q[0]
+}
+
+/// The error against the closed form at 1 s falls at the order of the scheme (2, 4) when the
+/// step halves, the coupling holds at every step to round-off and `energy − work` is constant.
+#[test]
+fn a_geared_pair_converges_to_its_closed_form_and_holds_the_coupling() {
+    let alpha = 0.5 / (0.2 + 4.0 * 0.05);
+    for (order, p) in [("", 2), ("\norder = 4", 4)] {
+        let mut errors = Vec::new();
+        for n in [20_u32, 40] {
+            let h = 1.0 / f64::from(n);
+            let text = GEARS.replace("max_step = 0.05", &format!("max_step = {h}{order}"));
+            let (m, mut s) = spec_model(&text);
+            assert_eq!(s.inputs().len(), 1, "the follower has no input");
+            set_inputs(&mut s, &[0.5]);
+            let e0 = s.outputs().energy - s.outputs().work;
+            let mut worst = 0.0_f64;
+            for _ in 0..n {
+                step(&m, &mut s, h).unwrap();
+                let qa = q(&s, 0);
+                worst = worst.max((q(&s, 1) - (-2.0 * qa + 0.3)).abs());
+                let (wa, wb) = (s.outputs().joints[0].qd[0], s.outputs().joints[1].qd[0]);
+                assert!(
+                    (wb + 2.0 * wa).abs() < 1e-11 * (1.0 + wa.abs()),
+                    "{wb} {wa}"
+                );
+            }
+            let de = (s.outputs().energy - s.outputs().work - e0).abs();
+            eprintln!(
+                "gears order {p}, h = {h}: |q_b − r q_a − o| ≤ {worst:.2e}, |Δ(E − W)| {de:.2e}",
+                order.trim()
+            );
+            assert!(worst < 1e-12, "{worst:e}");
+            assert!(de < 1e-13, "{de:e}");
+            errors.push((q(&s, 0) - 0.5 * alpha).abs());
+        }
+        let rate = (errors[0] / errors[1]).log2();
+        eprintln!(
+            "gears order {p}: errors {:.2e} {:.2e}, rate {rate:.2}",
+            errors[0], errors[1]
+        );
+        assert!((rate - f64::from(p)).abs() < 0.3, "{rate}");
+        assert!(errors[1] < 1e-3 * 0.5 * alpha, "{errors:?}");
+    }
+}
+
+/// The gripper on its free palm: the fingers stay mirrored to round-off at every step, the
+/// momenta are those of the start and `energy − work` is constant, at a large step and both
+/// orders, with the left finger pushed by a varying force.
+#[test]
+fn a_gripper_on_a_free_palm_closes_symmetrically_with_exact_momenta() {
+    for order in ["", "\norder = 4"] {
+        let text = GRIPPER.replace("max_step = 0.02", &format!("max_step = 0.02{order}"));
+        let (m, mut s) = spec_model(&text);
+        let (p0, l0) = (s.outputs().p, s.outputs().l);
+        let e0 = s.outputs().energy - s.outputs().work;
+        let (mut sym, mut dp, mut dl, mut de) = (0.0_f64, 0.0_f64, 0.0_f64, 0.0_f64);
+        for k in 0..300 {
+            set_inputs(&mut s, &[0.3 * (0.05 * f64::from(k)).sin()]);
+            step(&m, &mut s, 0.02).unwrap();
+            let o = s.outputs();
+            sym = sym.max((o.joints[0].q[0] - o.joints[1].q[0]).abs());
+            // the fingers mirrored about the palm's y = 0 plane, in the palm frame
+            let palm = &o.bodies[0];
+            let yl = (palm.rot.transpose() * (o.bodies[1].r - palm.r)).y;
+            let yr = (palm.rot.transpose() * (o.bodies[2].r - palm.r)).y;
+            sym = sym.max((yl + yr).abs());
+            dp = dp.max((o.p - p0).norm());
+            dl = dl.max((o.l - l0).norm());
+            de = de.max((o.energy - o.work - e0).abs());
+        }
+        eprintln!(
+            "gripper{}: asymmetry {sym:.2e} m, |Δp| {dp:.2e}, |ΔL| {dl:.2e}, |Δ(E − W)| {de:.2e}",
+            order.trim()
+        );
+        assert!(sym < 1e-13, "{sym:e}");
+        assert!(dp < 1e-14 && dl < 1e-14, "{dp:e} {dl:e}");
+        assert!(de < 1e-13, "{de:e}");
+    }
+}
+
+/// Two pendulums under gravity, one following the other at half its angle, and two slides:
+/// `energy − work` constant to round-off at a large step, the couplings held at every step.
+#[test]
+fn coupled_pendulums_keep_energy_minus_work_exact() {
+    let text = r#"
+name = "CoupledPendulums"
+gravity = [0.0, -3.0, -9.81]
+[solver]
+max_step = 0.02
+[[body]]
+name = "p1"
+mass = 1.0
+com = [0.0, 0.0, -0.4]
+inertia = [0.02, 0.02, 0.005]
+[[body]]
+name = "p2"
+mass = 0.6
+com = [0.1, 0.0, -0.3]
+inertia = [0.01, 0.012, 0.004]
+[[body]]
+name = "s1"
+mass = 0.3
+inertia = [0.001, 0.001, 0.001]
+[[body]]
+name = "s2"
+mass = 0.2
+inertia = [0.001, 0.001, 0.001]
+[[joint]]
+name = "j1"
+type = "revolute"
+parent = "world"
+child = "p1"
+axis = [1.0, 0.0, 0.0]
+actuated = true
+damping = 0.05
+initial = { q = 1.0, qd = 2.0 }
+[[joint]]
+name = "j2"
+type = "revolute"
+parent = "world"
+child = "p2"
+origin = { xyz = [0.5, 0.0, 0.0], rpy = [0.0, 0.3, 0.0] }
+axis = [1.0, 0.0, 0.0]
+stiffness = 3.0
+[[joint]]
+name = "k1"
+type = "prismatic"
+parent = "p1"
+child = "s1"
+origin = { xyz = [0.0, 0.0, -0.5] }
+axis = [0.0, 1.0, 0.0]
+[[joint]]
+name = "k2"
+type = "prismatic"
+parent = "p2"
+child = "s2"
+origin = { xyz = [0.0, 0.0, -0.4] }
+axis = [0.0, 0.0, 1.0]
+stiffness = 20.0
+[[coupling]]
+a = "j1"
+b = "j2"
+ratio = 0.5
+offset = -0.2
+[[coupling]]
+a = "k1"
+b = "k2"
+ratio = -1.5
+"#;
+    for order in ["", "\norder = 4"] {
+        let text = text.replace("max_step = 0.02", &format!("max_step = 0.02{order}"));
+        let (m, mut s) = spec_model(&text);
+        set_inputs(&mut s, &[0.4]);
+        let e0 = s.outputs().energy - s.outputs().work;
+        let (mut de, mut dc) = (0.0_f64, 0.0_f64);
+        for _ in 0..500 {
+            step(&m, &mut s, 0.02).unwrap();
+            let o = s.outputs();
+            de = de.max((o.energy - o.work - e0).abs());
+            dc = dc.max((o.joints[1].q[0] - 0.5 * o.joints[0].q[0] + 0.2).abs());
+            dc = dc.max((o.joints[3].q[0] + 1.5 * o.joints[2].q[0]).abs());
+            assert!(o.constraint_residual < 1e-9);
+        }
+        eprintln!("pendulums{order}: |Δ(E − W)| ≤ {de:.2e}, coupling ≤ {dc:.2e}");
+        assert!(de < 1e-12 * e0.abs().max(1.0), "{de:e}");
+        assert!(dc < 1e-12, "{dc:e}");
+    }
+}
+
+/// The dense test oracle takes the same Newton iterates as the bordered solve.
+#[test]
+fn the_bordered_solve_equals_the_dense_oracle() {
+    let (m, mut s) = spec_model(GEARS);
+    let mut dense: Model = m.clone();
+    dense.set_dense_solver(true);
+    let mut sd = State::new(&dense);
+    set_inputs(&mut s, &[0.5]);
+    set_inputs(&mut sd, &[0.5]);
+    for _ in 0..10 {
+        step(&m, &mut s, 0.05).unwrap();
+        step(&dense, &mut sd, 0.05).unwrap();
+    }
+    let (a, b) = (q(&s, 1), q(&sd, 1));
+    assert!((a - b).abs() < 1e-13, "{a} {b}");
+}
+
+fn problems(text: &str) -> String {
+    match Spec::from_str(text, triad::spec::Format::Toml, "test.toml") {
+        Ok(spec) => match spec.lower() {
+            Ok(_) => String::new(),
+            Err(e) => e.to_string(),
+        },
+        Err(e) => e.to_string(),
+    }
+}
+
+#[test]
+fn bad_couplings_are_refused_with_their_paths() {
+    let cases = [
+        ("a = \"a\"\nb = \"c\"", "coupling[0].b", "no joint \"c\""),
+        (
+            "a = \"a\"\nb = \"a\"",
+            "coupling[0]",
+            "cannot follow itself",
+        ),
+        (
+            "a = \"a\"\nb = \"b\"\nratio = 0.0",
+            "coupling[0].ratio",
+            "non-zero",
+        ),
+        (
+            "a = \"a\"\nb = \"b\"\nratio = nan",
+            "coupling[0].ratio",
+            "finite",
+        ),
+        ("a = \"b\"\nb = \"a\"", "coupling[0]", "no input of its own"),
+    ];
+    for (body, path, what) in cases {
+        let text = GEARS.replace(
+            "[[coupling]]\na = \"a\"\nb = \"b\"\nratio = -2.0\noffset = 0.3",
+            &format!("[[coupling]]\n{body}"),
+        );
+        let p = problems(&text);
+        assert!(p.contains(path) && p.contains(what), "{body}: {p}");
+    }
+    // a follower's explicit initial state must be the leader's mapped
+    let text = GEARS.replace(
+        "origin = { xyz = [0.6, 0.0, 0.0] }",
+        "origin = { xyz = [0.6, 0.0, 0.0] }\ninitial = { q = 1.0 }",
+    );
+    let p = problems(&text);
+    assert!(
+        p.contains("initial q = 1") && p.contains("leave it out"),
+        "{p}"
+    );
+    // consistent is accepted
+    let text = GEARS.replace(
+        "origin = { xyz = [0.6, 0.0, 0.0] }",
+        "origin = { xyz = [0.6, 0.0, 0.0] }\ninitial = { q = 0.3 }",
+    );
+    assert_eq!(problems(&text), "");
+    // kinds must match
+    let text = GEARS.replace(
+        "name = \"b\"\ntype = \"revolute\"",
+        "name = \"b\"\ntype = \"prismatic\"",
+    );
+    let p = problems(&text);
+    assert!(p.contains("both be revolute or both prismatic"), "{p}");
+    // a cycle
+    let text =
+        format!("{GEARS}\n[[coupling]]\na = \"b\"\nb = \"a\"\n").replace("actuated = true\n", "");
+    let p = problems(&text);
+    assert!(p.contains("cycle"), "{p}");
+}
