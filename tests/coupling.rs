@@ -128,8 +128,7 @@ fn a_geared_pair_converges_to_its_closed_form_and_holds_the_coupling() {
             }
             let de = (s.outputs().energy - s.outputs().work - e0).abs();
             eprintln!(
-                "gears order {p}, h = {h}: |q_b − r q_a − o| ≤ {worst:.2e}, |Δ(E − W)| {de:.2e}",
-                order.trim()
+                "gears order {p}, h = {h}: |q_b − r q_a − o| ≤ {worst:.2e}, |Δ(E − W)| {de:.2e}"
             );
             assert!(worst < 1e-12, "{worst:e}");
             assert!(de < 1e-13, "{de:e}");
@@ -353,4 +352,72 @@ fn bad_couplings_are_refused_with_their_paths() {
         format!("{GEARS}\n[[coupling]]\na = \"b\"\nb = \"a\"\n").replace("actuated = true\n", "");
     let p = problems(&text);
     assert!(p.contains("cycle"), "{p}");
+}
+
+/// A two-finger gripper as URDF: the right finger `<mimic>`s the left with a multiplier and an
+/// offset. The import couples them (the follower without an input) and the fingers follow
+/// `q_r = −0.5 q_l + 0.01` while the left one is driven; a mimic of another kind stays
+/// independent with a note.
+#[test]
+fn a_urdf_mimic_becomes_a_coupling() {
+    let urdf = r#"<robot name="gripper">
+  <link name="palm"><inertial><mass value="1"/><inertia ixx="0.01" iyy="0.01" izz="0.01" ixy="0" ixz="0" iyz="0"/></inertial></link>
+  <link name="left"><inertial><mass value="0.1"/><inertia ixx="1e-4" iyy="1e-4" izz="1e-4" ixy="0" ixz="0" iyz="0"/></inertial></link>
+  <link name="right"><inertial><mass value="0.1"/><inertia ixx="1e-4" iyy="1e-4" izz="1e-4" ixy="0" ixz="0" iyz="0"/></inertial></link>
+  <link name="tip"><inertial><mass value="0.05"/><inertia ixx="1e-5" iyy="1e-5" izz="1e-5" ixy="0" ixz="0" iyz="0"/></inertial></link>
+  <joint name="left_joint" type="prismatic"><parent link="palm"/><child link="left"/>
+    <origin xyz="0 0.04 0"/><axis xyz="0 -1 0"/><limit lower="-0.02" upper="0.04" effort="20" velocity="1"/></joint>
+  <joint name="right_joint" type="prismatic"><parent link="palm"/><child link="right"/>
+    <origin xyz="0 -0.04 0"/><axis xyz="0 1 0"/><limit lower="-0.02" upper="0.04" effort="20" velocity="1"/>
+    <mimic joint="left_joint" multiplier="-0.5" offset="0.01"/></joint>
+  <joint name="tip_joint" type="revolute"><parent link="left"/><child link="tip"/>
+    <axis xyz="1 0 0"/><limit lower="-1" upper="1" effort="5" velocity="1"/>
+    <mimic joint="left_joint"/></joint>
+</robot>"#;
+    let (spec, outcome) =
+        triad::urdf::import(urdf, "gripper.urdf", &triad::urdf::ImportOptions::default()).unwrap();
+    assert_eq!(spec.coupling.len(), 1, "{:?}", spec.coupling);
+    let c = &spec.coupling[0];
+    assert_eq!(
+        (c.a.as_str(), c.b.as_str(), c.ratio, c.offset),
+        ("left_joint", "right_joint", -0.5, 0.01)
+    );
+    assert!(
+        !spec
+            .joint
+            .iter()
+            .find(|j| j.name == "right_joint")
+            .unwrap()
+            .actuated
+    );
+    assert!(
+        outcome
+            .notes
+            .iter()
+            .any(|n| n.contains("tip_joint") && n.contains("another kind")),
+        "{:?}",
+        outcome.notes
+    );
+    let (def, settings) = spec.lower().unwrap();
+    let m = Model::new(&def, settings).unwrap();
+    let mut s = State::new(&m);
+    // inputs: left_joint's force and tip_joint's torque; the right finger has none
+    assert_eq!(s.inputs().len(), 2);
+    let names: Vec<&str> = def.joints.iter().map(|j| j.name.as_str()).collect();
+    let (l, r) = (
+        names.iter().position(|n| *n == "left_joint").unwrap(),
+        names.iter().position(|n| *n == "right_joint").unwrap(),
+    );
+    assert!(
+        (q(&s, r) - 0.01).abs() < 1e-15,
+        "the follower starts at the offset"
+    );
+    s.inputs_mut()[0] = 2.0;
+    let mut worst = 0.0_f64;
+    for _ in 0..200 {
+        step(&m, &mut s, 1e-3).unwrap();
+        worst = worst.max((q(&s, r) - (-0.5 * q(&s, l) + 0.01)).abs());
+    }
+    assert!(q(&s, l) > 1e-3, "the driven finger moved: {}", q(&s, l));
+    assert!(worst < 1e-14, "{worst:e}");
 }

@@ -1,4 +1,5 @@
-//! `<equality>`: `connect` and `weld` as loop-closing joints, `joint` noted.
+//! `<equality>`: `connect` and `weld` as loop-closing joints, `joint` with a linear
+//! `polycoef` as a `[[coupling]]`.
 
 use std::collections::HashMap;
 
@@ -7,10 +8,11 @@ use super::model::{Equality, Model};
 use crate::import::frame::Iso;
 use crate::import::names::Namer;
 use crate::math::{Mat3, Vec3};
-use crate::spec::{JointKind, JointSpec, Problem, Spec};
+use crate::spec::{CouplingSpec, JointKind, JointSpec, Problem, Spec};
 
 /// `<equality>`: `connect` and `weld` become loop-closing spherical and fixed joints between
-/// the two bodies' hosts, placed where the bodies are at `qpos0`; `joint` is noted.
+/// the two bodies' hosts, placed where the bodies are at `qpos0`; `joint` becomes a coupling
+/// (`coupling`).
 #[allow(clippy::too_many_arguments)]
 pub(super) fn equalities(
     m: &Model,
@@ -35,21 +37,29 @@ pub(super) fn equalities(
     );
     for (k, e) in m.equalities.iter().enumerate() {
         let (at, b1, b2, anchor, kind) = match e {
-            Equality::Joint { joint1, joint2, .. } => {
-                for n in std::iter::once(joint1).chain(joint2) {
-                    if !joint_of.contains_key(n.as_str()) {
-                        if let Equality::Joint { at, .. } = e {
-                            problems.push(Problem::new(
-                                at.clone(),
-                                format!("joint \"{n}\" does not exist"),
-                            ));
-                        }
+            Equality::Joint {
+                at,
+                joint1,
+                joint2,
+                polycoef,
+            } => {
+                if let Some(c) = coupling(
+                    m,
+                    joint_of,
+                    spec,
+                    at,
+                    joint1,
+                    joint2.as_deref(),
+                    polycoef,
+                    problems,
+                ) {
+                    // the follower has no input, and its initial state follows the leader's
+                    if let Some(js) = spec.joint.iter_mut().find(|j| j.name == c.b) {
+                        js.actuated = false;
+                        js.initial = None;
                     }
+                    spec.coupling.push(c);
                 }
-                out.notes.push(format!(
-                    "<equality joint joint1=\"{joint1}\"{}>: the coupling is not enforced (triad has no joint couplings yet): the joints are independent",
-                    joint2.as_ref().map_or_else(String::new, |j| format!(" joint2=\"{j}\""))
-                ));
                 continue;
             }
             Equality::Connect {
@@ -132,4 +142,65 @@ pub(super) fn equalities(
             ),
         });
     }
+}
+
+/// `<equality joint>` as the coupling `q₁ = c₁ q₂ + (c₀ + q₁,₀ − c₁ q₂,₀)` (`q = qpos`, so
+/// `qpos0` is each joint's `ref`): two hinges or two slides with a linear `polycoef`; a lock
+/// (no `joint2`), a polynomial of higher degree, `c₁ = 0` or other joint kinds are refused on
+/// the element's line.
+#[allow(clippy::too_many_arguments)]
+fn coupling(
+    m: &Model,
+    joint_of: &HashMap<String, usize>,
+    spec: &Spec,
+    at: &str,
+    joint1: &str,
+    joint2: Option<&str>,
+    c: &[f64; 5],
+    problems: &mut Vec<Problem>,
+) -> Option<CouplingSpec> {
+    let mut bad = |why: String| {
+        problems.push(Problem::new(at.to_string(), why));
+        None
+    };
+    let Some(joint2) = joint2 else {
+        return bad(format!("<equality joint joint1=\"{joint1}\"> without joint2 locks the joint: not supported (a coupling needs two joints)"));
+    };
+    let (Some(&b), Some(&a)) = (joint_of.get(joint1), joint_of.get(joint2)) else {
+        for n in [joint1, joint2] {
+            if !joint_of.contains_key(n) {
+                problems.push(Problem::new(
+                    at.to_string(),
+                    format!("joint \"{n}\" does not exist"),
+                ));
+            }
+        }
+        return None;
+    };
+    if c[2..].iter().any(|&x| x != 0.0) || c[1] == 0.0 {
+        return bad(format!(
+            "polycoef {c:?}: only a linear coupling (c2 = c3 = c4 = 0, c1 ≠ 0) is supported"
+        ));
+    }
+    let (ja, jb) = (&spec.joint[a], &spec.joint[b]);
+    let one = matches!(ja.kind, JointKind::Revolute | JointKind::Prismatic);
+    if ja.kind != jb.kind || !one {
+        return bad(format!(
+            "joints \"{joint1}\" and \"{joint2}\" must both be hinges or both slides to be coupled"
+        ));
+    }
+    let reference = |name: &str| {
+        m.bodies
+            .iter()
+            .flat_map(|body| &body.joints)
+            .find(|j| j.name.as_deref() == Some(name))
+            .map_or(0.0, |j| j.reference)
+    };
+    let (r1, r2) = (reference(joint1), reference(joint2));
+    Some(CouplingSpec {
+        a: ja.name.clone(),
+        b: jb.name.clone(),
+        ratio: c[1],
+        offset: c[0] + r1 - c[1] * r2,
+    })
 }

@@ -159,11 +159,12 @@ pub(super) enum Equality {
         body1: String,
         body2: Option<String>,
     },
-    /// `joint joint1 joint2 polycoef`.
+    /// `joint joint1 joint2 polycoef`: `q₁ − q₁,₀ = Σₖ cₖ (q₂ − q₂,₀)ᵏ` (`qpos0`).
     Joint {
         at: String,
         joint1: String,
         joint2: Option<String>,
+        polycoef: [f64; 5],
     },
 }
 

@@ -99,11 +99,18 @@ pub(super) fn equalities(r: &mut Reader, node: &Node, out: &mut Vec<Equality>) {
                         body2: a.text("body2").map(str::to_string),
                     }
                 }
-                "joint" => Equality::Joint {
-                    at: e.at(),
-                    joint1: need("joint1")?,
-                    joint2: a.text("joint2").map(str::to_string),
-                },
+                "joint" => {
+                    let mut polycoef = [0.0, 1.0, 0.0, 0.0, 0.0];
+                    if let Some(v) = a.numbers("polycoef", 1, 5)? {
+                        polycoef[..v.len()].copy_from_slice(&v);
+                    }
+                    Equality::Joint {
+                        at: e.at(),
+                        joint1: need("joint1")?,
+                        joint2: a.text("joint2").map(str::to_string),
+                        polycoef,
+                    }
+                }
                 other => {
                     return Err(e.problem(format!(
                         "<equality><{other}> is not supported (connect, weld, joint are)"

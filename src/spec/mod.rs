@@ -57,9 +57,9 @@ mod values;
 
 pub use error::{did_you_mean, Problem, SpecErrors};
 pub use schema::{
-    BodySpec, BoxShape, CollisionSpec, ContactPairSpec, Experiment, Format, GroundSpec,
-    InitialSpec, JointKind, JointSpec, LoadSpec, OriginSpec, RoundShape, SiteSpec, SolverSpec,
-    Spec, SphereShape, VisualSpec, JOINT_TYPES,
+    BodySpec, BoxShape, CollisionSpec, ContactPairSpec, CouplingSpec, Experiment, Format,
+    GroundSpec, InitialSpec, JointKind, JointSpec, LoadSpec, OriginSpec, RoundShape, SiteSpec,
+    SolverSpec, Spec, SphereShape, VisualSpec, JOINT_TYPES,
 };
 pub use shipped::bundled;
 pub use values::{Coords, InertiaSpec, OrientationSpec};

@@ -17,8 +17,8 @@ use crate::import::inertia::set_inertial;
 use crate::import::names::Namer;
 use crate::math::{rpy_to_matrix, Vec3};
 use crate::spec::{
-    did_you_mean, JointKind, JointSpec, OrientationSpec, OriginSpec, Problem, SiteSpec, Spec,
-    VisualSpec,
+    did_you_mean, CouplingSpec, JointKind, JointSpec, OrientationSpec, OriginSpec, Problem,
+    SiteSpec, Spec, VisualSpec,
 };
 
 /// What the import produced besides the spec.
@@ -128,15 +128,10 @@ pub(crate) fn spec(
         children[p].push(k);
     }
     for j in &robot.joints {
-        let Some((other, line)) = &j.mimic else {
+        let Some((other, line, ..)) = &j.mimic else {
             continue;
         };
-        if joint_names.contains_key(other.as_str()) {
-            out.notes.push(format!(
-                "joint '{}' mimics '{other}': imported as an independent joint (the coupling is not enforced)",
-                j.name
-            ));
-        } else {
+        if !joint_names.contains_key(other.as_str()) {
             // a joint named like it with the mimicking joint's prefix (`Left_` + `index_q1`)
             let prefixed = robot.joints.iter().find(|c| {
                 c.name
@@ -204,6 +199,7 @@ pub(crate) fn spec(
     let world_root = robot.links[root].name == "world";
     let mut bodies = Namer::new(&["world"]);
     let mut joints = Namer::default();
+    let mut joint_ids: HashMap<&str, (String, JointKind)> = HashMap::new();
     let mut sites = Namer::default();
     let mut spec = empty;
     spec.name = Namer::default().name(&robot.name);
@@ -385,6 +381,7 @@ pub(crate) fn spec(
                 format!("URDF joint \"{}\"", j.name)
             };
             out.joint_lines.push(j.line);
+            joint_ids.insert(j.name.as_str(), (id.clone(), kind));
             spec.joint.push(JointSpec {
                 name: id,
                 kind,
@@ -422,6 +419,7 @@ pub(crate) fn spec(
             });
         }
     }
+    mimics(robot, &joint_ids, &mut spec, &mut out.notes);
     // (kept links welded to the world are bodies, but they do not move either)
     let moving = host.iter().flatten().any(|p| p.cluster.is_some());
     if !moving && problems.len() == before {
@@ -477,6 +475,51 @@ pub(crate) fn spec(
 
 /// Reports every cycle of parent joints (links joined in a ring, attached to the root or not),
 /// each once: its joints with their lines, in document order, and its links.
+/// Every `<mimic>` between two revolute or two prismatic joints becomes a `[[coupling]]`
+/// (`q = multiplier · q_other + offset`), the follower without an input of its own; any other
+/// (a joint merged away, kinds that differ) is noted and the joint left independent.
+fn mimics(
+    robot: &Robot,
+    joint_ids: &HashMap<&str, (String, JointKind)>,
+    spec: &mut Spec,
+    notes: &mut Vec<String>,
+) {
+    for j in &robot.joints {
+        let Some((other, _, ratio, offset)) = &j.mimic else {
+            continue;
+        };
+        let (Some((b, kb)), Some((a, ka))) = (
+            joint_ids.get(j.name.as_str()),
+            joint_ids.get(other.as_str()),
+        ) else {
+            if joint_ids.contains_key(j.name.as_str()) {
+                notes.push(format!(
+                    "joint '{}' mimics '{other}', which is fixed or merged: imported as an independent joint",
+                    j.name
+                ));
+            }
+            continue;
+        };
+        let one = matches!(ka, JointKind::Revolute | JointKind::Prismatic);
+        if ka != kb || !one {
+            notes.push(format!(
+                "joint '{}' mimics '{other}' of another kind: imported as an independent joint (a coupling joins two revolute or two prismatic joints)",
+                j.name
+            ));
+            continue;
+        }
+        if let Some(js) = spec.joint.iter_mut().find(|s| s.name == *b) {
+            js.actuated = false;
+        }
+        spec.coupling.push(CouplingSpec {
+            a: a.clone(),
+            b: b.clone(),
+            ratio: *ratio,
+            offset: *offset,
+        });
+    }
+}
+
 fn cycles(
     robot: &Robot,
     link_at: &HashMap<&str, usize>,

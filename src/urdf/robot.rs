@@ -93,8 +93,9 @@ pub(crate) struct Joint {
     pub damping: f64,
     pub friction: f64,
     pub limit: Option<Limit>,
-    /// The joint this one mimics and the line of `<mimic>`.
-    pub mimic: Option<(String, usize)>,
+    /// The `<mimic>`: the joint this one follows, the line, `multiplier` (default 1) and
+    /// `offset` (default 0): `q = multiplier · q_other + offset`.
+    pub mimic: Option<(String, usize, f64, f64)>,
 }
 
 /// The robot: its name, links and joints in document order.
@@ -419,7 +420,12 @@ fn joint(e: &Element, problems: &mut Vec<Problem>) -> Option<Joint> {
         effort: number(l, "effort", &whose, problems),
     });
     let mimic = e.first("mimic").and_then(|m| match m.attr("joint") {
-        Some(other) => Some((other.to_string(), m.line)),
+        Some(other) => Some((
+            other.to_string(),
+            m.line,
+            number(m, "multiplier", &whose, problems).unwrap_or(1.0),
+            number(m, "offset", &whose, problems).unwrap_or(0.0),
+        )),
         None => {
             problems.push(Problem::new(
                 at(m.line, &whose),
