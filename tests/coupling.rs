@@ -421,3 +421,26 @@ fn a_urdf_mimic_becomes_a_coupling() {
     assert!(q(&s, l) > 1e-3, "the driven finger moved: {}", q(&s, l));
     assert!(worst < 1e-14, "{worst:e}");
 }
+
+/// The example gripper (`examples/specs/gripper.toml`): a force above the leading finger's
+/// friction closes both fingers to the stop together, mirrored, with `energy − work` exact.
+#[test]
+fn the_example_gripper_closes_both_fingers() {
+    let path = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("examples/specs/gripper.toml");
+    let (m, mut s) = spec_model(&std::fs::read_to_string(path).unwrap());
+    let e0 = s.outputs().energy - s.outputs().work;
+    set_inputs(&mut s, &[0.0, 1.5]);
+    for _ in 0..1000 {
+        step(&m, &mut s, 1e-3).unwrap();
+        let o = s.outputs();
+        assert!((o.joints[1].q[0] - o.joints[2].q[0]).abs() < 1e-15);
+    }
+    let o = s.outputs();
+    assert!(
+        o.joints[1].q[0] > 0.039,
+        "closed to the stop: {}",
+        o.joints[1].q[0]
+    );
+    let de = (o.energy - o.work - e0).abs();
+    assert!(de < 1e-12 * e0.abs(), "{de:e}");
+}
