@@ -8,7 +8,8 @@
 //! read-off   q:  δq = M(q)⁻¹ Σ_b J_bᵀ (m_b δφ_b, I_b δθ_b)      (exact for ξ tangent to the tree)
 //!            ν = M(q)⁻¹ b,  b = Σ_b J_bᵀ (m_b φ̇_b, Σᵢ dᵢ × Σⱼ Eᵢⱼ ḋⱼ)    (the outputs' M-orthogonal
 //!            projection of the nodal velocities, `projection.rs`, read as joint rates)
-//!            δν = M⁻¹ (δb − δM ν)          (δb, δM by one dual pass along (δq, ξ, δv))
+//!            δν = M⁻¹ (δb − δ(M ν))        (δb by a dual pass along (δq, ξ, δv), δ(M ν) by a
+//!                                          dual pass of the inverse dynamics at rest, O(N))
 //! ```
 //!
 //! `J_b` is body `b`'s twist Jacobian at its centre of mass (`TreeDynamics::generalized`),
@@ -124,11 +125,10 @@ impl TreeDynamics {
         let b0 = self.rate_load(q, xq, xv);
         let nu = lu.solve(&DVector::from_vec(b0)).ok_or_else(singular)?;
         let m0 = self.motion(q, &vec![0.0; n], None);
-        let mut out = DMatrix::zeros(2 * n, cols.cols);
+        // δq = M⁻¹ Σ J_bᵀ (m δφ, I δθ), every column by one solve
+        let mut rq = DMatrix::zeros(n, cols.cols);
         for col in 0..cols.cols {
             let xi = &cols.xi[col * 6 * nb..(col + 1) * 6 * nb];
-            let dv = &cols.dv[col * 12 * nb..(col + 1) * 12 * nb];
-            // δq = M⁻¹ Σ J_bᵀ (m δφ, I δθ)
             let (mut f, mut nn) = (vec![Vector3::zeros(); nb], vec![Vector3::zeros(); nb]);
             for b in 0..nb {
                 let dphi = Vector3::new(xi[6 * b], xi[6 * b + 1], xi[6 * b + 2]);
@@ -137,10 +137,22 @@ impl TreeDynamics {
                 f[b] = dphi * self.body_mass(b);
                 nn[b] = self.inertia_world(&m0, b) * dth + phi.cross(&f[b]);
             }
-            let rhs = self.generalized(&m0, f, nn);
-            let dq = lu.solve(&DVector::from_vec(rhs)).ok_or_else(singular)?;
-            // δν = M⁻¹ (δb − δM ν) along (δq, ξ, δv)
-            let qd: Vec<Dual64> = (0..n).map(|i| Dual64::new(q[i], dq[i])).collect();
+            rq.set_column(col, &DVector::from_vec(self.generalized(&m0, f, nn)));
+        }
+        let dq_all = lu.solve(&rq).ok_or_else(singular)?;
+        // δν = M⁻¹ (δb − δ(M ν)) along (δq, ξ, δv): δb by a dual pass of the rate load, δ(M ν)
+        // by a dual pass of the inverse dynamics at rest without gravity (O(N) each, where the
+        // mass matrix itself would be O(N·depth)), every column by one solve
+        let nu_c: Vec<Dual64> = nu.iter().map(|&x| Dual64::from(x)).collect();
+        let zero = vec![Dual64::from(0.0); n];
+        let no_input = vec![Dual64::from(0.0); self.n_inputs()];
+        let mut rv = DMatrix::zeros(n, cols.cols);
+        for col in 0..cols.cols {
+            let xi = &cols.xi[col * 6 * nb..(col + 1) * 6 * nb];
+            let dv = &cols.dv[col * 12 * nb..(col + 1) * 12 * nb];
+            let qd: Vec<Dual64> = (0..n)
+                .map(|i| Dual64::new(q[i], dq_all[(i, col)]))
+                .collect();
             let mut xqd: Vec<Dual64> = xq.iter().map(|&x| Dual64::from(x)).collect();
             for b in 0..nb {
                 let dth = Vector3::new(xi[6 * b + 3], xi[6 * b + 4], xi[6 * b + 5]);
@@ -162,21 +174,15 @@ impl TreeDynamics {
                 .map(|(&x, &d)| Dual64::new(x, d))
                 .collect();
             let db = self.rate_load(&qd, &xqd, &xvd);
-            let dm = self.mass_matrix_of(&qd);
-            let mut r = DVector::zeros(n);
+            let dmnu = self.residual(&qd, &zero, &nu_c, &no_input, true);
             for i in 0..n {
-                let mut s = db[i].eps;
-                for j in 0..n {
-                    s -= dm[(i, j)].eps * nu[j];
-                }
-                r[i] = s;
-            }
-            let dnu = lu.solve(&r).ok_or_else(singular)?;
-            for i in 0..n {
-                out[(i, col)] = dq[i];
-                out[(n + i, col)] = dnu[i];
+                rv[(i, col)] = db[i].eps - dmnu[i].eps;
             }
         }
+        let dnu_all = lu.solve(&rv).ok_or_else(singular)?;
+        let mut out = DMatrix::zeros(2 * n, cols.cols);
+        out.rows_mut(0, n).copy_from(&dq_all);
+        out.rows_mut(n, n).copy_from(&dnu_all);
         Ok(out)
     }
 
