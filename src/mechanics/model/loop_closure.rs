@@ -108,12 +108,7 @@ fn world<T: Real>() -> [Jet<T>; NODES] {
         v: z,
         a: z,
     };
-    [
-        Jet { x: z, v: z, a: z },
-        e(0),
-        e(1),
-        e(2),
-    ]
+    [Jet { x: z, v: z, a: z }, e(0), e(1), e(2)]
 }
 
 /// `v = Σ a_k qᴬ_k + Σ b_k qᴮ_k + c` and its two time derivatives.

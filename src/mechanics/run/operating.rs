@@ -125,7 +125,11 @@ impl Operating {
     #[must_use]
     pub fn x(&self) -> Vec<f64> {
         match &self.loops {
-            Some(cl) => cl.pick(&self.q).into_iter().chain(cl.pick(&self.nu)).collect(),
+            Some(cl) => cl
+                .pick(&self.q)
+                .into_iter()
+                .chain(cl.pick(&self.nu))
+                .collect(),
             None => self.q.iter().chain(&self.nu).copied().collect(),
         }
     }

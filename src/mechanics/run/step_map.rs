@@ -93,13 +93,9 @@ pub fn finish_step_map(
     // the columns are stored as the read-off takes them (column-major)
     let Tangent { cols, xi, dv, .. } = *tangent;
     let nodal = NodalColumns { cols, xi, dv };
-    let dx = end.dynamics.readoff_tangent(
-        &end.q,
-        &state.q,
-        &state.v,
-        &nodal,
-        end.loops.as_ref(),
-    )?;
+    let dx =
+        end.dynamics
+            .readoff_tangent(&end.q, &state.q, &state.v, &nodal, end.loops.as_ref())?;
     let dx = match &end.loops {
         Some(cl) => {
             let nt = end.q.len();
