@@ -315,11 +315,18 @@ fn eigenvalues(a: &DMatrix<f64>) -> Vec<(f64, f64)> {
     ev
 }
 
+/// A model, its inputs at rest and the other independent joints to pick.
+type Case = (
+    &'static str,
+    &'static [f64],
+    &'static [&'static [&'static str]],
+);
+
 /// At an equilibrium (the inputs holding the initial pose at rest) every choice of
 /// independent coordinates gives a similar A: the same eigenvalues (to 1e-9 relative).
 #[test]
 fn other_coordinates_give_the_same_eigenvalues() {
-    let cases: [(&str, &[f64], &[&[&str]]); 2] = [
+    let cases: [Case; 2] = [
         (FOUR_BAR, &[0.0], &[&["crank_coupler"], &["rocker_pivot"]]),
         (SLIDER_CRANK, &[0.0, 0.0], &[&["crank_rod"], &["guide"]]),
     ];

@@ -272,7 +272,8 @@ impl Closure {
         let gd = all.split(&all.jacobian(td, q)).1;
         let sv = gd.singular_values();
         let (smax, smin) = (sv.max(), sv.min());
-        if r > 0 && !(smin > 1e-8 * smax) {
+        let regular = smin > 1e-8 * smax;
+        if r > 0 && !regular {
             return Err(format!(
                 "the coordinates of {} are not independent here: the other coordinates ({}) \
                  cannot follow them around the loop (their block of the loop's Jacobian is \

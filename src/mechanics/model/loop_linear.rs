@@ -78,7 +78,7 @@ impl Closure {
             n + self.n_rows(),
             b.iter()
                 .copied()
-                .chain(std::iter::repeat(T::zero()).take(self.n_rows())),
+                .chain(std::iter::repeat_n(T::zero(), self.n_rows())),
         );
         let s = solve(k, rhs).ok_or("the constrained mass matrix of the loop is singular")?;
         Ok(s.rows(0, n).iter().copied().collect())
