@@ -272,14 +272,22 @@ pub fn run(args: &LinearizeArgs) -> Result<(), CliError> {
     let mut ys: Vec<Quantity> = Vec::new();
     let mut y_names = Vec::new();
     let mut left_out = Vec::new();
+    let mut closing = Vec::new();
     for &k in &chosen {
-        match quantity(outputs[k].accessor).filter(|q| op.differentiable(q)) {
-            Some(q) => {
+        match quantity(outputs[k].accessor) {
+            Some(q) if op.differentiable(&q) => {
                 ys.push(q);
                 y_names.push(outputs[k].name.clone());
             }
+            Some(_) => closing.push(outputs[k].name.clone()),
             None => left_out.push(outputs[k].name.clone()),
         }
+    }
+    if !closing.is_empty() {
+        eprintln!(
+            "note: left out of y (values of loop-closing joints, no coordinates of the tree): {}",
+            closing.join(", ")
+        );
     }
     if !left_out.is_empty() {
         eprintln!(
