@@ -31,8 +31,8 @@
 
 use crate::mechanics::{
     above_floor, begin_step_map, controlled_step, finish_step_map, first_event, penetration,
-    step_state, Event, Model, ModelDef, ModelError, Operating, SolverSettings, State, StepError,
-    StepMap, Verdict,
+    step_state, Event, Independent, Model, ModelDef, ModelError, Operating, SolverSettings, State,
+    StepError, StepMap, Verdict,
 };
 use thiserror::Error;
 
@@ -231,9 +231,17 @@ impl Simulation {
     /// # Errors
     /// A loop or contact (no minimal coordinates), a failed step, or a singular mass matrix.
     pub fn step_map(&mut self, h: f64) -> Result<StepMap, String> {
-        begin_step_map(&self.model, &mut self.state)?;
+        self.step_map_in(h, &Independent::Auto)
+    }
+
+    /// [`Simulation::step_map`] with closed loops in the independent coordinates `pick`.
+    ///
+    /// # Errors
+    /// As [`Simulation::step_map`], and a pick that is not independent here.
+    pub fn step_map_in(&mut self, h: f64, pick: &Independent) -> Result<StepMap, String> {
+        let end = begin_step_map(&self.model, &mut self.state, pick)?;
         let advanced = self.advance(h);
-        let map = finish_step_map(&self.model, &mut self.state);
+        let map = finish_step_map(&self.model, &mut self.state, &end);
         advanced.map_err(|e| e.error.to_string())?;
         map
     }
@@ -244,7 +252,7 @@ impl Simulation {
     /// Why there are none: a loop, contact, or a singular joint-space mass matrix.
     pub fn accelerations(&self) -> Result<Accelerations, String> {
         let op = self.operating()?;
-        let (nud, _) = op.dynamics.accelerations(&op.q, &op.nu, &op.u)?;
+        let nud = op.accelerations()?;
         let at = (0..self.model.def().joints.len())
             .map(|j| op.dynamics.joint_at(j))
             .collect();

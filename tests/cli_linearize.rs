@@ -116,10 +116,85 @@ fn the_three_formats_are_written() {
 #[test]
 fn bad_requests_are_refused_and_write_nothing() {
     let dir = tempfile::tempdir().unwrap();
-    let cases: [(&[&str], &str); 5] = [
+    let cases: [(&[&str], &str); 10] = [
         (
-            &["linearize", "four_bar", "-o", "x.json"],
-            "closes a kinematic loop",
+            &[
+                "linearize",
+                "four_bar",
+                "--coordinates",
+                "nosuch",
+                "-o",
+                "x.json",
+            ],
+            "no joint 'nosuch'",
+        ),
+        (
+            &[
+                "linearize",
+                "four_bar",
+                "--coordinates",
+                "coupler_rocker",
+                "-o",
+                "x.json",
+            ],
+            "closes a loop",
+        ),
+        (
+            &[
+                "linearize",
+                "four_bar",
+                "--coordinates",
+                "crank_pivot,rocker_pivot",
+                "-o",
+                "x.json",
+            ],
+            "leave 1 independent coordinate",
+        ),
+        (
+            &[
+                "linearize",
+                "four_bar",
+                "--coordinates",
+                "crank_pivot,crank_pivot",
+                "-o",
+                "x.json",
+            ],
+            "named twice",
+        ),
+        // the slider at its dead centre cannot drive the crank
+        (
+            &[
+                "linearize",
+                "slider_crank",
+                "--set",
+                "joint.crank_pivot.q0=0",
+                "--set",
+                "joint.crank_rod.q0=0",
+                "--set",
+                "joint.guide.q0=0.8",
+                "--set",
+                "joint.crank_pivot.qd0=0",
+                "--set",
+                "joint.crank_rod.qd0=0",
+                "--set",
+                "joint.guide.qd0=0",
+                "--coordinates",
+                "guide",
+                "-o",
+                "x.json",
+            ],
+            "not independent here",
+        ),
+        (
+            &[
+                "linearize",
+                "pendulum",
+                "--coordinates",
+                "hinge",
+                "-o",
+                "x.json",
+            ],
+            "no closed loops",
         ),
         (
             &["linearize", "pendulum", "--step", "-0.01", "-o", "x.json"],
@@ -154,4 +229,68 @@ fn bad_requests_are_refused_and_write_nothing() {
         );
     }
     assert_eq!(std::fs::read_dir(dir.path()).unwrap().count(), 0);
+}
+
+/// Closed loops: x holds the independent coordinates triad picks (the actuated crank), or those
+/// `--coordinates` names; y holds the dependent joints too, not the loop-closing joint's.
+#[test]
+fn closed_loops_are_linearised_in_independent_coordinates() {
+    let dir = tempfile::tempdir().unwrap();
+    for (args, x_names) in [
+        (
+            &["linearize", "four_bar", "-o", "a.json"][..],
+            vec!["joint.crank_pivot.q", "joint.crank_pivot.qd"],
+        ),
+        (
+            &[
+                "linearize",
+                "four_bar",
+                "--coordinates",
+                "rocker_pivot",
+                "-o",
+                "a.json",
+            ][..],
+            vec!["joint.rocker_pivot.q", "joint.rocker_pivot.qd"],
+        ),
+        (
+            &[
+                "linearize",
+                "slider_crank",
+                "--coordinates",
+                "guide",
+                "-o",
+                "a.json",
+            ][..],
+            vec!["joint.guide.q", "joint.guide.qd"],
+        ),
+    ] {
+        let out = triad(args, dir.path());
+        let err = String::from_utf8_lossy(&out.stderr);
+        assert!(out.status.success(), "{args:?}: {err}");
+        assert!(err.contains("independent coordinate"), "{err}");
+        let text = std::fs::read_to_string(dir.path().join("a.json")).unwrap();
+        let v: serde_json::Value = serde_json::from_str(&text).unwrap();
+        let names: Vec<&str> = v["x_names"]
+            .as_array()
+            .unwrap()
+            .iter()
+            .map(|s| s.as_str().unwrap())
+            .collect();
+        assert_eq!(names, x_names, "{args:?}");
+        let ys: Vec<&str> = v["y_names"]
+            .as_array()
+            .unwrap()
+            .iter()
+            .map(|s| s.as_str().unwrap())
+            .collect();
+        assert!(
+            ys.len() == 6
+                && !ys
+                    .iter()
+                    .any(|y| y.contains("rod_slider") || y.contains("coupler_rocker")),
+            "{ys:?}"
+        );
+        assert_eq!(v["A"].as_array().unwrap().len(), 2);
+        assert_eq!(v["Ad"].as_array().unwrap().len(), 2);
+    }
 }

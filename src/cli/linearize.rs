@@ -6,7 +6,7 @@
 use std::path::PathBuf;
 
 use clap::Args;
-use triad::mechanics::{Operating, Quantity};
+use triad::mechanics::{Independent, Operating, Quantity};
 use triad::sim::Simulation;
 use triad::variables::linear::quantity;
 use triad::variables::{Accessor, Causality, VariableTable};
@@ -54,7 +54,11 @@ pub struct LinearizeArgs {
     /// system.p and system.L can be differentiated.
     #[arg(long, value_name = "PATTERN[,PATTERN]")]
     pub outputs: Vec<String>,
-    /// Independent coordinates of closed loops (not available yet: loops are refused).
+    /// Closed loops: the joints whose coordinates are the independent coordinates of x
+    /// (comma-separated tree joints, as many coordinates as the loops leave free, e.g.
+    /// `crank_pivot`); the other tree joints follow them around the loops. Default: triad picks
+    /// the actuated joints first, then the others in model order, each when the rest can still
+    /// close the loops there (well-conditioned), and prints its choice.
     #[arg(long, value_name = "J1,J2,...")]
     pub coordinates: Option<String>,
     /// How a .urdf or MJCF .xml MODEL is imported.
@@ -187,14 +191,20 @@ pub fn run(args: &LinearizeArgs) -> Result<(), CliError> {
             );
         }
     }
-    if args.coordinates.is_some() {
-        return Err(
-            "--coordinates: closed loops are not linearised yet (their models are \
-                    refused), so there is nothing to pick"
-                .to_string()
-                .into(),
-        );
-    }
+    let pick = match &args.coordinates {
+        Some(list) => {
+            let names: Vec<String> = list
+                .split(',')
+                .map(|s| s.trim().to_string())
+                .filter(|s| !s.is_empty())
+                .collect();
+            if names.is_empty() {
+                return Err("--coordinates: name at least one joint".to_string().into());
+            }
+            Independent::Joints(names)
+        }
+        None => Independent::Auto,
+    };
     let spec = load(&args.model, &args.urdf)?;
     let (mut def, mut settings) = spec.lower()?;
     let table = VariableTable::new(&def, &settings).with_labels(&spec.labels());
@@ -204,15 +214,41 @@ pub fn run(args: &LinearizeArgs) -> Result<(), CliError> {
     let mut sim =
         Simulation::new(&def, settings, start).map_err(|e| format!("{}: {e}", args.model))?;
     hold_inputs(&args.u, &table, sim.state_mut().inputs_mut())?;
-    let mut op =
-        Operating::of(sim.model(), sim.state()).map_err(|e| format!("{}: {e}", args.model))?;
-    let x_names = op.state_names(sim.model());
+    let coordinates_error = |e: String| -> CliError {
+        if args.coordinates.is_some() {
+            format!("{}: --coordinates: {e}", args.model).into()
+        } else {
+            format!("{}: {e}", args.model).into()
+        }
+    };
+    let mut op = Operating::picked(sim.model(), sim.state(), &pick)
+        .map_err(|e| coordinates_error(e.to_string()))?;
     let t0 = match (&args.at, args.time) {
         (Some(path), Some(t)) => {
-            from_result(&mut op, &x_names, path, t, &def)?;
+            let names = op.tree_names(sim.model());
+            from_result(&mut op, &names, path, t, &def)?;
+            op.pick(sim.model(), &pick).map_err(coordinates_error)?;
             t
         }
         _ => start,
+    };
+    let x_names = op.state_names(sim.model());
+    let loop_pick = match &op.loops {
+        Some(cl) => {
+            let n = cl.indep.len();
+            eprintln!(
+                "closed loops: x holds {n} independent coordinate(s) {} (the other tree joints \
+                 follow them around the loops{})",
+                x_names[..n].join(", "),
+                if args.coordinates.is_some() {
+                    ""
+                } else {
+                    "; --coordinates picks others"
+                }
+            );
+            Independent::Coords(cl.indep.clone())
+        }
+        None => Independent::Auto,
     };
     // inputs and outputs, in table order
     let inputs: Vec<_> = table.with_causality(Causality::Input).collect();
@@ -236,14 +272,22 @@ pub fn run(args: &LinearizeArgs) -> Result<(), CliError> {
     let mut ys: Vec<Quantity> = Vec::new();
     let mut y_names = Vec::new();
     let mut left_out = Vec::new();
+    let mut closing = Vec::new();
     for &k in &chosen {
         match quantity(outputs[k].accessor) {
-            Some(q) => {
+            Some(q) if op.differentiable(&q) => {
                 ys.push(q);
                 y_names.push(outputs[k].name.clone());
             }
+            Some(_) => closing.push(outputs[k].name.clone()),
             None => left_out.push(outputs[k].name.clone()),
         }
+    }
+    if !closing.is_empty() {
+        eprintln!(
+            "note: left out of y (values of loop-closing joints, no coordinates of the tree): {}",
+            closing.join(", ")
+        );
     }
     if !left_out.is_empty() {
         eprintln!(
@@ -273,12 +317,12 @@ pub fn run(args: &LinearizeArgs) -> Result<(), CliError> {
     };
     // the discrete-time model: one communication step from the operating point, as a run
     // started there takes it
-    let x_op: Vec<f64> = op.q.iter().chain(&op.nu).copied().collect();
+    let x_op = op.x();
     let mut from_op = Simulation::new(&op.initial_def(&def, &x_op), settings, t0)
         .map_err(|e| format!("{}: {e}", args.model))?;
     from_op.state_mut().inputs_mut().copy_from_slice(&op.u);
     // without --step a model whose step map is not available still gets A, B, C, D
-    let map = match from_op.step_map(h) {
+    let map = match from_op.step_map_in(h, &loop_pick) {
         Ok(map) => Some(map),
         Err(e) if args.step.is_none() => {
             eprintln!("note: no Ad, Bd (the step of {h} s from the operating point: {e})");
@@ -294,7 +338,7 @@ pub fn run(args: &LinearizeArgs) -> Result<(), CliError> {
     };
     let nu = u_cols.len();
     let ny = ys.len();
-    let x0: Vec<f64> = op.q.iter().chain(&op.nu).copied().collect();
+    let x0 = op.x();
     let u0: Vec<f64> = u_cols.iter().map(|&k| op.u[input_index(k)]).collect();
     let speed = lin.xdot0.iter().map(|x| x * x).sum::<f64>().sqrt();
     eprintln!(

@@ -65,8 +65,9 @@ pub enum Command {
     /// coordinates x = (joint coordinates and a floating base's r and rotation vector theta,
     /// then their rates), from analytic derivatives (not finite differences), written as
     /// .json, .npz or .mat with the names of x, u, y and the operating point (x0, u0, y0,
-    /// xdot0, t0). Trees without collision shapes; closed loops, contact and the discrete-time
-    /// Ad, Bd (--step) are not available yet.
+    /// xdot0, t0), and the exact discrete-time Ad, Bd of one step (--step). Closed loops: x holds
+    /// independent coordinates (--coordinates picks them). Not with collision shapes or joint
+    /// friction.
     #[command(allow_negative_numbers = true)]
     Linearize(linearize::LinearizeArgs),
     /// Write a 3-D replay of a result CSV: one self-contained HTML file (works offline) that

@@ -5,7 +5,9 @@
 //! Knowns are the states (`joint.J.q`, `joint.J.qd` of `variables::linear::States`) and the
 //! inputs; unknowns are outputs that can be differentiated (`joint.J.qd` and `joint.J.qdd` are
 //! the state derivatives). The other coordinates (spherical joints, a floating base) are held
-//! at their values.
+//! at their values. Models with closed loops are refused (`mechanics::supported`): their
+//! declared states are every tree joint's, which the loops do not leave independent;
+//! `triad linearize` linearises them in independent coordinates.
 
 use super::instance::{Instance, Op};
 use super::params::Base;

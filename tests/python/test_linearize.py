@@ -18,7 +18,7 @@ derivatives of the forward dynamics on real robots, and what it refuses it refus
 - Armature: the same robots with a rotor inertia on every joint (`armature` written into the
   imported spec) against Pinocchio with `model.armature` set alike (its ABA and CRBA add it to
   the joint-space inertia): A, B and xdot0 to the same 1e-9.
-- Errors: a closed loop, a step of 0 s, an unknown output extension and an unknown input are refused
+- Errors: an unknown joint in --coordinates, a step of 0 s, an unknown output extension and an unknown input are refused
   with a message naming the problem.
 """
 import json
@@ -358,12 +358,12 @@ def test_floating_base_against_pinocchio(triad_bin, tmp_path, name, record_prope
 @pytest.mark.parametrize(
     "args, words",
     [
-        (["four_bar"], ["loop"]),
+        (["four_bar", "--coordinates", "nosuch"], ["--coordinates", "no joint 'nosuch'"]),
         (["pendulum", "--step", "0", "-o", "{tmp}/x.txt"], ["--step", "positive"]),
         (["pendulum", "-o", "{tmp}/x.txt"], [".json", ".npz", ".mat"]),
         (["pendulum", "--u", "nosuch=1"], ["nosuch", "no such input"]),
     ],
-    ids=["loop", "step", "extension", "input"],
+    ids=["coordinates", "step", "extension", "input"],
 )
 def test_refusals_are_named(triad_bin, tmp_path, args, words):
     args = [a.replace("{tmp}", str(tmp_path)) for a in args]

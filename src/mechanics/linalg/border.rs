@@ -181,6 +181,23 @@ impl Border {
         }
     }
 
+    /// `y += P X Pᵀ x`: the off-tree couplings applied to body unknowns `x` (6 per body), added
+    /// to the body rows `y` (6 per body); the step's tangent multiplies the assembled matrix by
+    /// a column with it (`step::tangent`).
+    pub fn add_couplings_times(&self, x: &[f64], y: &mut [f64]) {
+        let nt = self.nt;
+        for i in 0..nt {
+            let row = &self.x[i * nt..(i + 1) * nt];
+            let mut acc = 0.0;
+            for m in 0..nt {
+                if row[m] != 0.0 {
+                    acc += row[m] * x[6 * self.touched[m / 6] + m % 6];
+                }
+            }
+            y[6 * self.touched[i / 6] + i % 6] += acc;
+        }
+    }
+
     /// Row of `W` (and of the stacked tree unknowns) of unknown `i` of the touched body slot
     /// `i / 6`.
     fn touched_row(&self, i: usize) -> usize {

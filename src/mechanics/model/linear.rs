@@ -68,7 +68,8 @@ pub struct Linear {
     pub y0: Vec<f64>,
 }
 
-fn lift(x: &[f64], seed: Option<usize>) -> Vec<Dual64> {
+/// `x` as dual numbers, the derivative part 1 at `seed`.
+pub(crate) fn lift(x: &[f64], seed: Option<usize>) -> Vec<Dual64> {
     x.iter()
         .enumerate()
         .map(|(i, &v)| {

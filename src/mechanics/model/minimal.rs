@@ -10,6 +10,9 @@
 //!            projection of the nodal velocities, `projection.rs`, read as joint rates)
 //!            δν = M⁻¹ (δb − δ(M ν))        (δb by a dual pass along (δq, ξ, δv), δ(M ν) by a
 //!                                          dual pass of the inverse dynamics at rest, O(N))
+//! loops      embedding: the tree's columns × ∂(q, ν)/∂(q_I, ν_I) (`loop_linear`); read-off:
+//!            δq as above (the perturbations are tangent to the tree), ν by the projection onto
+//!            the loops' rates [M Gᵀ; G 0][ν; μ] = [b; 0] in one dual pass; then the rows of I
 //! ```
 //!
 //! `J_b` is body `b`'s twist Jacobian at its centre of mass (`TreeDynamics::generalized`),
@@ -17,6 +20,7 @@
 //! At the read-off the operating orientations of spherical joints and free bodies are the end
 //! state's, so the rotation-vector coordinates are perturbations about the end's orientations.
 
+use super::loop_closure::Closure;
 use super::tree_dynamics::{c, Real, TreeDynamics};
 use nalgebra::{DMatrix, DVector, Matrix3, Vector3};
 use num_dual::Dual64;
@@ -31,6 +35,38 @@ pub struct NodalColumns {
     pub xi: Vec<f64>,
     /// `δ(φ̇, ḋ₁, ḋ₂, ḋ₃)` per body, per column, m/s and 1/s (world).
     pub dv: Vec<f64>,
+}
+
+impl NodalColumns {
+    /// The columns `self · m` (each new column a combination of the old ones).
+    ///
+    /// # Panics
+    /// When `m` has not `self.cols` rows.
+    #[must_use]
+    pub fn times(&self, m: &DMatrix<f64>) -> Self {
+        assert_eq!(m.nrows(), self.cols, "NodalColumns::times: rows");
+        let combine = |v: &[f64]| -> Vec<f64> {
+            let len = v.len() / self.cols.max(1);
+            let mut out = vec![0.0; len * m.ncols()];
+            for new in 0..m.ncols() {
+                let dst = &mut out[new * len..(new + 1) * len];
+                for old in 0..self.cols {
+                    let f = m[(old, new)];
+                    if f != 0.0 {
+                        for (o, x) in dst.iter_mut().zip(&v[old * len..(old + 1) * len]) {
+                            *o += f * x;
+                        }
+                    }
+                }
+            }
+            out
+        };
+        Self {
+            cols: m.ncols(),
+            xi: combine(&self.xi),
+            dv: combine(&self.dv),
+        }
+    }
 }
 
 /// Body `b`'s Euler tensor `E = ½ tr(J) I − J` (body axes).
@@ -107,23 +143,29 @@ impl TreeDynamics {
 
     /// The read-off's tangent at the end state: minimal coordinates `q` (operating
     /// orientations set to the end's), nodal coordinates `xq` and velocities `xv` (12 per body),
-    /// applied to `cols`; returns `δx = (δq, δν)` (2n × cols).
+    /// applied to `cols`; returns `δx = (δq, δν)` of the tree's coordinates (2n × cols). With
+    /// `loops`, the rates are those on the loops (module formulas).
     ///
     /// # Errors
-    /// A message when the joint-space mass matrix is singular.
+    /// A message when the joint-space (or the loop's constrained) mass matrix is singular.
+    #[allow(clippy::too_many_lines)]
     pub fn readoff_tangent(
         &self,
         q: &[f64],
         xq: &[f64],
         xv: &[f64],
         cols: &NodalColumns,
+        loops: Option<&Closure>,
     ) -> Result<DMatrix<f64>, String> {
         let n = self.n();
         let nb = self.n_bodies();
         let singular = || "the joint-space mass matrix is singular".to_string();
         let lu = self.mass_matrix(q).lu();
         let b0 = self.rate_load(q, xq, xv);
-        let nu = lu.solve(&DVector::from_vec(b0)).ok_or_else(singular)?;
+        let nu = match loops {
+            Some(cl) => DVector::from_vec(cl.project_rates(self, q, &b0)?),
+            None => lu.solve(&DVector::from_vec(b0)).ok_or_else(singular)?,
+        };
         let m0 = self.motion(q, &vec![0.0; n], None);
         // δq = M⁻¹ Σ J_bᵀ (m δφ, I δθ), every column by one solve
         let mut rq = DMatrix::zeros(n, cols.cols);
@@ -174,12 +216,24 @@ impl TreeDynamics {
                 .map(|(&x, &d)| Dual64::new(x, d))
                 .collect();
             let db = self.rate_load(&qd, &xqd, &xvd);
+            if let Some(cl) = loops {
+                let nud = cl.project_rates(self, &qd, &db)?;
+                for i in 0..n {
+                    rv[(i, col)] = nud[i].eps;
+                }
+                continue;
+            }
             let dmnu = self.residual(&qd, &zero, &nu_c, &no_input, true);
             for i in 0..n {
                 rv[(i, col)] = db[i].eps - dmnu[i].eps;
             }
         }
-        let dnu_all = lu.solve(&rv).ok_or_else(singular)?;
+        // with loops the columns of `rv` are already δν (the projection's own solve)
+        let dnu_all = if loops.is_some() {
+            rv
+        } else {
+            lu.solve(&rv).ok_or_else(singular)?
+        };
         let mut out = DMatrix::zeros(2 * n, cols.cols);
         out.rows_mut(0, n).copy_from(&dq_all);
         out.rows_mut(n, n).copy_from(&dnu_all);

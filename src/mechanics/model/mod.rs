@@ -40,6 +40,8 @@ pub(crate) mod joint_friction;
 pub(crate) mod kernels;
 pub mod kinematics;
 pub mod linear;
+pub mod loop_closure;
+pub mod loop_linear;
 pub mod loops;
 pub mod minimal;
 pub(crate) mod one_sided;

@@ -32,8 +32,8 @@
 //! The loads are those of the step (`step/joint_loads.rs`): actuator torques `±τ n` and slide
 //! forces, springs and dampers per coordinate, a spherical joint's damper `−c(ω_B − ω_A)` and
 //! torques about its parent joint-frame axes, body torques and forces (world frame, at the
-//! centre of mass), gravity. Loop-closing joints and contact are not part of this model
-//! (`linear` refuses them).
+//! centre of mass), gravity. Loop-closing joints are not tree edges: their rows constrain the
+//! tree's coordinates (`loop_closure`, `loop_linear`). Contact is not part of this model.
 // index loops over coupled fixed-size arrays read closer to the formulas than iterator chains
 #![allow(clippy::needless_range_loop)]
 
@@ -162,8 +162,11 @@ enum Parent {
 /// Why a model has no minimal-coordinate dynamics here.
 #[derive(Clone, Debug, PartialEq, Eq)]
 pub enum Unsupported {
-    /// A joint closes a loop.
+    /// A joint closes a loop (refused where only trees are supported: the FMU's directional
+    /// derivatives, the `joint.J.qdd` outputs).
     Loop(String),
+    /// The closed loops cannot be put in independent coordinates at this state.
+    Closure(String),
     /// The model has collision shapes.
     Contact,
     /// A joint has Coulomb friction.
@@ -175,7 +178,8 @@ pub enum Unsupported {
 impl std::fmt::Display for Unsupported {
     fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
         match self {
-            Self::Loop(j) => write!(f, "joint '{j}' closes a kinematic loop; linear models of closed loops are not available yet"),
+            Self::Loop(j) => write!(f, "joint '{j}' closes a kinematic loop; closed loops are linearised by `triad linearize` only (in independent coordinates), not here"),
+            Self::Closure(why) => write!(f, "{why}"),
             Self::Contact => write!(f, "the model has collision shapes; linear models with contact are not available yet (build it without contacts, e.g. `--no-contacts` or without [[collision]])"),
             Self::Friction(j) => write!(f, "joint '{j}' has Coulomb friction, which has no derivative where the joint sticks; linearise without it (`--set joint.{j}.friction=0`)"),
             Self::Coupling(j) => write!(f, "joint '{j}' follows another joint through a [[coupling]]; linear models of coupled joints are not available yet"),
@@ -183,8 +187,9 @@ impl std::fmt::Display for Unsupported {
     }
 }
 
-/// Whether `def` has a minimal-coordinate dynamics here: a tree (no loop-closing joint) without
-/// collision shapes, joint friction or couplings.
+/// Whether `def` has a minimal-coordinate dynamics in tree coordinates alone: a tree (no
+/// loop-closing joint) without collision shapes, joint friction or couplings. The FMU's
+/// directional derivatives and the `joint.J.qdd` outputs ask this.
 ///
 /// # Errors
 /// [`Unsupported`] naming the first obstacle.
@@ -192,6 +197,16 @@ pub fn supported(def: &ModelDef) -> Result<(), Unsupported> {
     if let Some(j) = def.joints.iter().find(|j| j.loop_closing) {
         return Err(Unsupported::Loop(j.name.clone()));
     }
+    linearizable(def)
+}
+
+/// Whether `def` has a linear model here (`triad linearize`): no collision shapes, no joint
+/// friction; closed loops are allowed (their tree coordinates subject to the loop closure,
+/// `loop_closure`).
+///
+/// # Errors
+/// [`Unsupported`] naming the first obstacle.
+pub fn linearizable(def: &ModelDef) -> Result<(), Unsupported> {
     if !def.contact.shapes.is_empty() {
         return Err(Unsupported::Contact);
     }
@@ -229,7 +244,7 @@ impl TreeDynamics {
     /// frame → parent joint frame; others unused) and `body_rot0` (free bodies; others unused).
     ///
     /// # Errors
-    /// [`Unsupported`] for loops and contact.
+    /// [`Unsupported`] for contact and joint friction.
     pub fn new(
         model: &Model,
         damping: &[f64],
@@ -238,7 +253,7 @@ impl TreeDynamics {
         body_rot0: Vec<Mat3>,
     ) -> Result<Self, Unsupported> {
         let def: &ModelDef = model.def();
-        supported(def)?;
+        linearizable(def)?;
         let nb = def.bodies.len();
         let mut coords = Vec::new();
         let mut parent_of = vec![Parent::Free(0); nb];
@@ -248,6 +263,11 @@ impl TreeDynamics {
         }
         let mut joints = Vec::with_capacity(def.joints.len());
         for (j, jd) in def.joints.iter().enumerate() {
+            if jd.loop_closing {
+                // its rows are the loop-closure constraints (`loop_closure`), not a tree edge
+                joints.push(None);
+                continue;
+            }
             parent_of[jd.child] = Parent::Joint(j);
             let at = coords.len();
             coords.extend((0..jd.kind.dof()).map(|k| Coord::Joint { joint: j, k }));

@@ -9,11 +9,18 @@
 //!
 //! The rates are the outputs' (admissible, `projection.rs`); damping, stiffness and inputs are
 //! the state's current values.
+//!
+//! ```text
+//! closed loops: q, ν above are the tree's (every tree joint); the loops' split (`loop_closure`)
+//!   picks I, then q_D, ν_D are solved from q_I, ν_I (the point closes the loops to round-off)
+//!   and the state is x = (q_I, ν_I)
+//! ```
 
 use super::state::State;
 use crate::math::{exp_so3, matrix_to_quat, quat_to_matrix, Mat3, Vec3};
 use crate::mechanics::model::def::{JointInitial, ModelDef};
 use crate::mechanics::model::linear::{Linear, Quantity};
+use crate::mechanics::model::loop_closure::{Closure, Independent};
 use crate::mechanics::model::runtime::Model;
 use crate::mechanics::model::tree_dynamics::{Coord, TreeDynamics, Unsupported};
 
@@ -28,14 +35,25 @@ pub struct Operating {
     pub nu: Vec<f64>,
     /// Inputs `u` (m), as the state holds them (before clamping).
     pub u: Vec<f64>,
+    /// The loops' closure and split into independent coordinates (`None`: a tree).
+    pub loops: Option<Closure>,
 }
 
 impl Operating {
-    /// The operating point of `state` (module table).
+    /// The operating point of `state` (module table); closed loops in the independent
+    /// coordinates triad picks ([`Independent::Auto`]).
     ///
     /// # Errors
-    /// [`Unsupported`] for loops and contact.
+    /// [`Unsupported`] for contact and joint friction, or loops that cannot be split here.
     pub fn of(model: &Model, state: &State) -> Result<Self, Unsupported> {
+        Self::picked(model, state, &Independent::Auto)
+    }
+
+    /// [`Operating::of`] with the independent coordinates `pick` of closed loops.
+    ///
+    /// # Errors
+    /// As [`Operating::of`]; a `pick` that is not independent here, or for a tree.
+    pub fn picked(model: &Model, state: &State, pick: &Independent) -> Result<Self, Unsupported> {
         let def = model.def();
         let out = state.outputs();
         let nj = def.joints.len();
@@ -75,33 +93,111 @@ impl Operating {
                 }
             }
         }
-        Ok(Self {
+        let mut op = Self {
             dynamics,
             q,
             nu,
             u: state.inputs().to_vec(),
-        })
+            loops: None,
+        };
+        op.pick(model, pick).map_err(Unsupported::Closure)?;
+        Ok(op)
+    }
+
+    /// Splits closed loops into the independent coordinates `pick` at the current `q` and
+    /// closes them: `q_D`, `ν_D` solved from `q_I`, `ν_I` (module docs). Nothing for a tree
+    /// (but a named pick is refused).
+    ///
+    /// # Errors
+    /// A message: `pick` not independent here, or the loops do not close near `q`.
+    pub fn pick(&mut self, model: &Model, pick: &Independent) -> Result<(), String> {
+        self.loops = Closure::new(&self.dynamics, model, &self.q, pick)?;
+        if let Some(cl) = &self.loops {
+            let (qi, vi) = (cl.pick(&self.q), cl.pick(&self.nu));
+            let (q, nu) = cl.complete(&self.dynamics, &self.q, &qi, &vi)?;
+            self.q = q;
+            self.nu = nu;
+        }
+        Ok(())
+    }
+
+    /// The state `x`: `(q, ν)`, or `(q_I, ν_I)` with closed loops.
+    #[must_use]
+    pub fn x(&self) -> Vec<f64> {
+        match &self.loops {
+            Some(cl) => cl
+                .pick(&self.q)
+                .into_iter()
+                .chain(cl.pick(&self.nu))
+                .collect(),
+            None => self.q.iter().chain(&self.nu).copied().collect(),
+        }
+    }
+
+    /// The tree's `(q, ν)` at the state `x` (with closed loops: completed, module docs).
+    ///
+    /// # Errors
+    /// A message when the loops do not close near `x`.
+    pub fn tree_of(&self, x: &[f64]) -> Result<(Vec<f64>, Vec<f64>), String> {
+        match &self.loops {
+            Some(cl) => {
+                let k = cl.indep.len();
+                cl.complete(&self.dynamics, &self.q, &x[..k], &x[k..])
+            }
+            None => {
+                let (q, nu) = x.split_at(self.q.len());
+                Ok((q.to_vec(), nu.to_vec()))
+            }
+        }
     }
 
     /// The exact linear model at this point with outputs `ys`.
     ///
     /// # Errors
-    /// A message when the joint-space mass matrix is singular.
+    /// A message when the joint-space (or the loops' constrained) mass matrix is singular.
     pub fn linearize(&self, ys: &[Quantity]) -> Result<Linear, String> {
-        self.dynamics.linearize(&self.q, &self.nu, &self.u, ys)
+        match &self.loops {
+            Some(cl) => cl.linearize(&self.dynamics, &self.q, &self.nu, &self.u, ys),
+            None => self.dynamics.linearize(&self.q, &self.nu, &self.u, ys),
+        }
     }
 
-    /// `def` with its initial state at `x = (q, ν)` of this operating point's coordinates
-    /// (the rotation vectors applied exactly: `M₀ exp(θ̂)`, `exp(θ̂) R₀`), so that a run
-    /// started from it starts at `x`.
+    /// Whether output `y` can be differentiated here: not the joint values of loop-closing
+    /// joints (they are no coordinates of the tree).
+    #[must_use]
+    pub fn differentiable(&self, y: &Quantity) -> bool {
+        match *y {
+            Quantity::JointQ(j, _) | Quantity::JointQd(j, _) | Quantity::JointQdd(j, _) => {
+                self.dynamics.joint_at(j).is_some()
+            }
+            _ => true,
+        }
+    }
+
+    /// The tree's accelerations `ν̇` at this point (on the loops, with closed loops).
+    ///
+    /// # Errors
+    /// A message when the mass matrix is singular.
+    pub fn accelerations(&self) -> Result<Vec<f64>, String> {
+        match &self.loops {
+            Some(cl) => cl.accelerations(&self.dynamics, &self.q, &self.nu, &self.u),
+            None => Ok(self.dynamics.accelerations(&self.q, &self.nu, &self.u)?.0),
+        }
+    }
+
+    /// `def` with its initial state at the state `x` of this operating point's coordinates
+    /// (the rotation vectors applied exactly: `M₀ exp(θ̂)`, `exp(θ̂) R₀`; closed loops closed
+    /// by the dependent coordinates), so that a run started from it starts at `x`.
     ///
     /// # Panics
-    /// When `x` is not `2n` long.
+    /// When `x` is not as long as [`Operating::x`], or the loops do not close near `x`.
     #[must_use]
     pub fn initial_def(&self, def: &ModelDef, x: &[f64]) -> ModelDef {
-        let n = self.q.len();
-        assert_eq!(x.len(), 2 * n, "initial_def: x length");
-        let (q, nu) = x.split_at(n);
+        assert_eq!(x.len(), self.x().len(), "initial_def: x length");
+        let (q, nu) = self
+            .tree_of(x)
+            .unwrap_or_else(|e| panic!("initial_def: {e}"));
+        let (q, nu) = (&q[..], &nu[..]);
         let mut out = def.clone();
         let v3 = |v: &[f64], at: usize| Vec3::new(v[at], v[at + 1], v[at + 2]);
         for (j, jd) in out.joints.iter_mut().enumerate() {
@@ -134,11 +230,29 @@ impl Operating {
         out
     }
 
-    /// The names of the coordinates then of the rates (`joint.J.q`, `joint.J.q[k]`,
+    /// The names of the state `x`: [`Operating::tree_names`], of `I` only with closed loops.
+    #[must_use]
+    pub fn state_names(&self, model: &Model) -> Vec<String> {
+        let all = self.tree_names(model);
+        match &self.loops {
+            Some(cl) => {
+                let n = self.q.len();
+                let rates: Vec<usize> = cl.indep.iter().map(|i| n + i).collect();
+                cl.indep
+                    .iter()
+                    .chain(&rates)
+                    .map(|&i| all[i].clone())
+                    .collect()
+            }
+            None => all,
+        }
+    }
+
+    /// The names of the tree's coordinates then of its rates (`joint.J.q`, `joint.J.q[k]`,
     /// `joint.J.theta[k]`, `body.B.r[i]`, `body.B.theta[i]`; `joint.J.qd`, `joint.J.qd[k]`,
     /// `joint.J.w[k]`, `body.B.v[i]`, `body.B.w[i]`; indices 1-based).
     #[must_use]
-    pub fn state_names(&self, model: &Model) -> Vec<String> {
+    pub fn tree_names(&self, model: &Model) -> Vec<String> {
         let def = model.def();
         let coords = self.dynamics.coords();
         let name = |co: &Coord, rate: bool| match *co {

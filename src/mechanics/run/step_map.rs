@@ -6,10 +6,13 @@
 //! columns at the start:  ∂(ξ, δv)/∂x  (2n, the embedding),  δu = eⱼ  (one per input)
 //! carried through every stage of every (sub-)step taken, then
 //! [Ad Bd] = ∂x(t+h)/∂(x(t), u) = read-off tangent at the end × the columns
+//! closed loops: x = (q_I, ν_I); the embedding's columns × ∂(q, ν)/∂x (2k), the read-off's
+//!   rows of I (`model::minimal`, `model::loop_linear`), the same I at both ends
 //! ```
 
 use super::operating::Operating;
 use super::state::State;
+use crate::mechanics::model::loop_closure::Independent;
 use crate::mechanics::model::minimal::NodalColumns;
 use crate::mechanics::model::runtime::Model;
 use crate::mechanics::step::tangent::Tangent;
@@ -18,7 +21,7 @@ use nalgebra::DMatrix;
 /// The discrete-time linear model of one communication step `δx(t+h) = Ad δx(t) + Bd δu`.
 #[derive(Clone, Debug)]
 pub struct StepMap {
-    /// `∂x(t+h)/∂x(t)`, 2n × 2n.
+    /// `∂x(t+h)/∂x(t)`, 2n × 2n (closed loops: 2k × 2k).
     pub ad: DMatrix<f64>,
     /// `∂x(t+h)/∂u`, 2n × (every input of the model, in `Model::inputs` order).
     pub bd: DMatrix<f64>,
@@ -26,11 +29,18 @@ pub struct StepMap {
     pub x1: Vec<f64>,
 }
 
-/// Starts carrying the step's tangent map in `state` from its operating point (module docs).
+/// Starts carrying the step's tangent map in `state` from its operating point (module docs),
+/// closed loops in the independent coordinates `pick`; returns the coordinates to read off at
+/// the end ([`Independent::Coords`] of those picked).
 ///
 /// # Errors
-/// Why the model has no minimal coordinates (a loop, contact).
-pub fn begin_step_map(model: &Model, state: &mut State) -> Result<(), String> {
+/// Why the model has no minimal coordinates (contact, friction, an armature), or a pick that
+/// is not independent here.
+pub fn begin_step_map(
+    model: &Model,
+    state: &mut State,
+    pick: &Independent,
+) -> Result<Independent, String> {
     if model.narm > 0 {
         return Err(
             "the discrete-time Ad, Bd of models with an armature are not available yet (the \
@@ -38,10 +48,17 @@ pub fn begin_step_map(model: &Model, state: &mut State) -> Result<(), String> {
                 .into(),
         );
     }
-    let op = Operating::of(model, state).map_err(|e| e.to_string())?;
-    let (n, m) = (op.q.len(), model.inputs.len());
+    let op = Operating::picked(model, state, pick).map_err(|e| e.to_string())?;
+    let (n, m) = (op.x().len() / 2, model.inputs.len());
     let nb = model.bodies.len();
-    let emb = op.dynamics.embed_tangent(&op.q, &op.nu);
+    let mut emb = op.dynamics.embed_tangent(&op.q, &op.nu);
+    let end = match &op.loops {
+        Some(cl) => {
+            emb = emb.times(&cl.embed_map(&op.dynamics, &op.q, &op.nu)?);
+            Independent::Coords(cl.indep.clone())
+        }
+        None => Independent::Auto,
+    };
     let cols = 2 * n + m;
     let mut xi = emb.xi;
     xi.resize(6 * nb * cols, 0.0);
@@ -52,30 +69,49 @@ pub fn begin_step_map(model: &Model, state: &mut State) -> Result<(), String> {
         du[(2 * n + i) * m + i] = 1.0;
     }
     state.ws.tangent = Some(Box::new(Tangent::new(model, cols, xi, dv, du)));
-    Ok(())
+    Ok(end)
 }
 
-/// Stops carrying the tangent map and reads it off at `state` (the end of the step).
+/// Stops carrying the tangent map and reads it off at `state` (the end of the step), closed
+/// loops in the coordinates `pick` (those [`begin_step_map`] returned).
 ///
 /// # Errors
 /// No tangent was carried, no minimal coordinates, or a singular mass matrix.
-pub fn finish_step_map(model: &Model, state: &mut State) -> Result<StepMap, String> {
+pub fn finish_step_map(
+    model: &Model,
+    state: &mut State,
+    pick: &Independent,
+) -> Result<StepMap, String> {
     let tangent = state
         .ws
         .tangent
         .take()
         .ok_or("no step tangent was carried")?;
-    let end = Operating::of(model, state).map_err(|e| e.to_string())?;
-    let n = end.q.len();
+    let end = Operating::picked(model, state, pick).map_err(|e| e.to_string())?;
+    let x1 = end.x();
+    let n = x1.len() / 2;
     // the columns are stored as the read-off takes them (column-major)
     let Tangent { cols, xi, dv, .. } = *tangent;
     let nodal = NodalColumns { cols, xi, dv };
-    let dx = end
-        .dynamics
-        .readoff_tangent(&end.q, &state.q, &state.v, &nodal)?;
+    let dx =
+        end.dynamics
+            .readoff_tangent(&end.q, &state.q, &state.v, &nodal, end.loops.as_ref())?;
+    let dx = match &end.loops {
+        Some(cl) => {
+            let nt = end.q.len();
+            let rows: Vec<usize> = cl
+                .indep
+                .iter()
+                .copied()
+                .chain(cl.indep.iter().map(|i| nt + i))
+                .collect();
+            dx.select_rows(&rows)
+        }
+        None => dx,
+    };
     Ok(StepMap {
         ad: dx.columns(0, 2 * n).into_owned(),
         bd: dx.columns(2 * n, cols - 2 * n).into_owned(),
-        x1: end.q.iter().chain(&end.nu).copied().collect(),
+        x1,
     })
 }

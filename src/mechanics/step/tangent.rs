@@ -28,7 +28,10 @@
 //!
 //! Cost per stage: two factorisations of the Newton matrix, one of the swapped one's assembly,
 //! `2 nᵤ` residual evaluations and one back-substitution per column, each O(N) on a tree.
-//! Contacts are not covered (`tree_dynamics::supported` refuses them before a tangent exists).
+//! Contacts are not covered (`tree_dynamics::linearizable` refuses them before a tangent
+//! exists). Loop-closing joints are: their rows' right-hand sides go to the border of the
+//! bordered solve and its off-tree couplings `X` join the products with the assembled matrix
+//! (`linalg::border`).
 // index loops over coupled fixed-size arrays read closer to the formulas than iterator chains
 #![allow(clippy::needless_range_loop)]
 
@@ -330,16 +333,22 @@ fn set_rhs(model: &Model, ws: &mut Work, y: &[f64]) {
             ws.blocks[b].r[k] = -y[6 * b + k];
         }
     }
-    for jt in &model.joints {
+    for (j, jt) in model.joints.iter().enumerate() {
         for k in 0..jt.rows.len() {
-            ws.blocks[jt.child].r[6 + k] = -y[6 * nb + jt.row0 + k];
+            let v = -y[6 * nb + jt.row0 + k];
+            match ws.border.lrow.get(j).copied().flatten() {
+                Some(l) => ws.border.rc[l + k] = v,
+                None => ws.blocks[jt.child].r[6 + k] = v,
+            }
         }
     }
 }
 
 /// `y = J x` over the body columns of the assembled (not factored) Newton matrix of `ws`, every
 /// row (the body rows, then the joint rows in `row0` order): the diagonal blocks `D`, the
-/// parent couplings `U` (the child's rows) and `L` (the parent's body rows). Trees only.
+/// parent couplings `U` (the child's rows) and `L` (the parent's body rows), and the border's
+/// off-tree couplings of loop-closing joints (their rows' entries are overwritten by
+/// `joint_rows`, so the border's row part `C_t` is not needed).
 fn matvec(model: &Model, ws: &Work, x: &[f64], y: &mut [f64]) {
     let nb = model.bodies.len();
     y.fill(0.0);
@@ -382,5 +391,8 @@ fn matvec(model: &Model, ws: &Work, x: &[f64], y: &mut [f64]) {
                 y[6 * p + r] += acc;
             }
         }
+    }
+    if ws.border.is_active() {
+        ws.border.add_couplings_times(x, &mut y[..6 * nb]);
     }
 }
