@@ -84,6 +84,7 @@ fn joint(
 
 fn model(bodies: Vec<BodyDef>, joints: Vec<JointDef>, gravity: Vec3) -> ModelDef {
     ModelDef {
+        actuators: Vec::new(),
         contact: Default::default(),
         gravity,
         bodies,

@@ -92,6 +92,7 @@ fn floating_tree(gravity: Vec3) -> ModelDef {
     js.stiffness = 40.0;
     jw.damping = 1e-3;
     ModelDef {
+        actuators: Vec::new(),
         contact: Default::default(),
         gravity,
         bodies,

@@ -40,6 +40,7 @@ fn top(w_world: Vec3) -> ModelDef {
         w: r0.transpose() * w_world,
     };
     ModelDef {
+        actuators: Vec::new(),
         contact: Default::default(),
         gravity: Vec3::new(0.0, 0.0, -G),
         bodies: vec![body(

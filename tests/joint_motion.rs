@@ -37,6 +37,7 @@ fn pair(kind: JointType) -> ModelDef {
         JointInitial::Coords { q, qd }
     };
     ModelDef {
+        actuators: Vec::new(),
         contact: Default::default(),
         gravity: Vec3::zeros(),
         bodies: vec![
@@ -118,6 +119,7 @@ fn angles_unwrap_from_the_given_initial_value() {
     let mut j = joint("r", JointType::Revolute, None, 0, Vec3::zeros(), Vec3::z());
     set_q(&mut j, &[4.0], &[10.0]);
     let def = ModelDef {
+        actuators: Vec::new(),
         contact: Default::default(),
         gravity: Vec3::zeros(),
         bodies: vec![body(

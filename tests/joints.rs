@@ -109,6 +109,7 @@ fn setup(kind: JointType, world_parent: bool, seed: u64) -> ModelDef {
         angular_velocity: rng.vec(1.5),
     };
     ModelDef {
+        actuators: Vec::new(),
         contact: Default::default(),
         gravity: Vec3::zeros(),
         bodies,

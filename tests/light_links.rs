@@ -65,6 +65,7 @@ fn chain(m: f64) -> ModelDef {
         joints.push(j);
     }
     ModelDef {
+        actuators: Vec::new(),
         contact: Default::default(),
         gravity: Vec3::new(0.0, 0.0, -G),
         bodies,

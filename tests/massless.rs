@@ -55,6 +55,7 @@ fn shoulder() -> JointDef {
 fn wrist_with_yoke() -> ModelDef {
     let wrist = Vec3::new(0.0, 0.0, -0.6);
     ModelDef {
+        actuators: Vec::new(),
         contact: Default::default(),
         gravity: Vec3::new(0.0, 0.0, -9.81),
         bodies: vec![
@@ -100,6 +101,7 @@ fn wrist_universal() -> ModelDef {
     );
     u.axis2 = Vec3::x();
     ModelDef {
+        actuators: Vec::new(),
         contact: Default::default(),
         gravity: Vec3::new(0.0, 0.0, -9.81),
         bodies: vec![arm(), hand()],
@@ -171,6 +173,7 @@ fn welded_chain(merged: bool) -> ModelDef {
             rotation: f.rotation * j2f.rotation,
         };
         return ModelDef {
+            actuators: Vec::new(),
             contact: Default::default(),
             gravity: Vec3::new(0.0, 0.0, -9.81),
             bodies,
@@ -203,6 +206,7 @@ fn welded_chain(merged: bool) -> ModelDef {
     j2.parent = Some(3);
     j2.parent_frame = j2f;
     ModelDef {
+        actuators: Vec::new(),
         contact: Default::default(),
         gravity: Vec3::new(0.0, 0.0, -9.81),
         bodies,
@@ -311,6 +315,7 @@ fn rod(kind: JointType) -> ModelDef {
         set_q(&mut j, &[1.2], &[0.0]);
     }
     ModelDef {
+        actuators: Vec::new(),
         contact: Default::default(),
         gravity: Vec3::new(0.0, 0.0, -9.81),
         bodies: vec![body(

@@ -69,6 +69,7 @@ proptest! {
         let m1 = moments(e1);
         let m2 = moments(e2);
         let def = ModelDef {
+            actuators: Vec::new(),
             contact: Default::default(),
             gravity: Vec3::zeros(),
             bodies: vec![

@@ -62,6 +62,7 @@ fn model(kind: JointType) -> ModelDef {
         initial: initial(s),
     };
     ModelDef {
+        actuators: Vec::new(),
         contact: Default::default(),
         gravity: Vec3::new(0.0, 0.0, -9.81),
         bodies: vec![

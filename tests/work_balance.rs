@@ -33,6 +33,7 @@ fn b7(damping: f64) -> ModelDef {
     rev.stiffness = 5.0;
     rev.damping = damping;
     ModelDef {
+        actuators: Vec::new(),
         contact: Default::default(),
         gravity: Vec3::new(0.0, 0.0, -9.81),
         bodies: vec![
@@ -131,6 +132,7 @@ fn floating() -> ModelDef {
     cyl.stiffness = 3.0;
     cyl.damping = 0.1;
     ModelDef {
+        actuators: Vec::new(),
         contact: Default::default(),
         gravity: Vec3::zeros(),
         bodies: vec![

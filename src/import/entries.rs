@@ -51,5 +51,6 @@ pub(crate) fn empty_spec(name: String, description: String) -> Spec {
         collision: Vec::new(),
         contact_pair: Vec::new(),
         self_collision: false,
+        actuator: Vec::new(),
     }
 }

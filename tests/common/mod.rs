@@ -132,6 +132,7 @@ pub fn free_body(
     force: bool,
 ) -> ModelDef {
     ModelDef {
+        actuators: Vec::new(),
         contact: Default::default(),
         gravity: Vec3::zeros(),
         bodies: vec![body("b", mass, Vec3::zeros(), inertia)],
@@ -225,6 +226,7 @@ pub fn double_pendulum() -> ModelDef {
     set_q(&mut j1, &[2.0], &[]);
     set_q(&mut j2, &[0.5], &[]);
     ModelDef {
+        actuators: Vec::new(),
         contact: Default::default(),
         gravity: Vec3::new(0.0, 0.0, -9.81),
         bodies: vec![body("link1", 1.0, com, i), body("link2", 1.0, com, i)],
@@ -252,6 +254,7 @@ pub fn heavy_top() -> ModelDef {
         w: Vec3::new(0.0, 0.0, 30.0),
     };
     ModelDef {
+        actuators: Vec::new(),
         contact: Default::default(),
         gravity: Vec3::new(0.0, 0.0, -9.81),
         bodies: vec![body(
@@ -311,6 +314,7 @@ pub fn chain(n: usize) -> ModelDef {
         joints.push(j);
     }
     ModelDef {
+        actuators: Vec::new(),
         contact: Default::default(),
         gravity: Vec3::new(0.0, 0.0, -9.81),
         bodies,
@@ -454,6 +458,7 @@ pub fn four_bar(theta1: f64, crank_rate: f64) -> ModelDef {
     );
     set_q(&mut j2, &[th3 - th2], &[0.0]);
     ModelDef {
+        actuators: Vec::new(),
         contact: Default::default(),
         gravity: Vec3::new(0.0, -9.81, 0.0),
         bodies: vec![link("crank", a), link("coupler", b), link("rocker", c)],

@@ -77,6 +77,7 @@ pub(crate) fn four_bar() -> ModelDef {
     let j1 = revolute(Some(0), 1, Vec3::new(a, 0.0, 0.0), Vec3::z(), th2 - th);
     let j2 = revolute(Some(1), 2, Vec3::new(b, 0.0, 0.0), Vec3::z(), th3 - th2);
     ModelDef {
+        actuators: Vec::new(),
         contact: Default::default(),
         gravity: Vec3::new(0.0, -9.81, 0.0),
         bodies: vec![link(a), link(b), link(c)],
@@ -113,6 +114,7 @@ pub(crate) fn hanging_chain(n: usize, axial: f64) -> ModelDef {
         ));
     }
     ModelDef {
+        actuators: Vec::new(),
         contact: Default::default(),
         gravity: Vec3::new(0.0, 0.0, -9.81),
         bodies,

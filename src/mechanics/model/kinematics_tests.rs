@@ -37,6 +37,7 @@ fn model(joints: &[(Option<usize>, usize, bool)], free: &[usize]) -> ModelDef {
         angular_velocity: Vec3::zeros(),
     };
     ModelDef {
+        actuators: Vec::new(),
         contact: Default::default(),
         gravity: Vec3::zeros(),
         bodies: (0..4).map(body).collect(),

@@ -1,5 +1,6 @@
-//! Joint loads of the Newton residual and Jacobian: actuators (consistent torques `±τ n̄` and
-//! slide forces, clamped to `±effort`), linear springs, viscous dampers, one-sided stops
+//! Joint loads of the Newton residual and Jacobian: actuator inputs (consistent torques `±τ n̄`
+//! and slide forces, clamped to `±effort`), joint actuators (`model::joint_actuator`: their
+//! generalised force `τ(q̄, Δ/h)` on the coordinate, with `∂τ/∂Δ`), linear springs, viscous dampers, one-sided stops
 //! (`model::stops`) and rotors (armature `a`: the load `−(2a/h²)(Δ − h ω₀)` of the midpoint
 //! rule on the coordinate with the rotor's rate `ω₀`, `turn`) on the joint coordinates (the midpoint
 //! gradient of a slide, the `atan2` discrete gradient of `turn` for an angle, the rotation
@@ -12,6 +13,7 @@ use super::turn::{row_increment, theta_jac, turn_step};
 use super::work::{Held, Work};
 use crate::math::Vec3;
 use crate::mechanics::model::constraint::{body_nodes, DotRow, Nodes};
+use crate::mechanics::model::joint_actuator::stage_sum;
 use crate::mechanics::model::kernels::{
     linvec_jac, outer, project, push_torque, rotation_increment, row_q, torque_jac,
 };
@@ -129,6 +131,7 @@ pub(crate) fn loaded(model: &Model, held: &Held, j: usize) -> bool {
         || held.damping[j] != 0.0
         || jt.armature != 0.0
         || jt.friction.is_some()
+        || !jt.acts.is_empty()
 }
 
 /// Adds the loads of joint `j` (stage size `h`, s) at the pair's iterate to `acc` (and the
@@ -214,9 +217,15 @@ pub(crate) fn joint_loads(
                         (f_fric, df_fric) = (st.force, st.dforce);
                     }
                 }
-                let coef = act - 0.5 * k_s * (s0 + s1) - c_d * ds / h + f_stop - f_rotor + f_fric;
-                let stiff =
-                    k_s != 0.0 || c_d != 0.0 || df_stop != 0.0 || rotor != 0.0 || fric.is_some();
+                let (f_act, df_act) = stage_sum(&jt.acts, held.inputs, s0, ds, h);
+                let coef =
+                    act - 0.5 * k_s * (s0 + s1) - c_d * ds / h + f_stop - f_rotor + f_fric + f_act;
+                let stiff = k_s != 0.0
+                    || c_d != 0.0
+                    || df_stop != 0.0
+                    || rotor != 0.0
+                    || fric.is_some()
+                    || df_act != 0.0;
                 if coef == 0.0 && !stiff {
                     // idle, or stops that neither end of the step has reached
                     continue;
@@ -224,7 +233,7 @@ pub(crate) fn joint_loads(
                 let grad = add_row(row, -hh * coef, fa, fb, &mut ws.cbody, cab);
                 if jac && stiff {
                     // rank-one term d(−hh·coef)/dx = hh (k/2 + c/h − ∂f_stop/∂s₁) ∇s(q) Q
-                    let kap = hh * (0.5 * k_s + c_d / h + rotor - df_stop - df_fric);
+                    let kap = hh * (0.5 * k_s + c_d / h + rotor - df_stop - df_fric - df_act);
                     let mut g1 = [Vec3::zeros(); 8];
                     row.gradient(qa, qb, &mut g1);
                     let cb_ = project(&grad[4..], dbar_b);
@@ -258,7 +267,8 @@ pub(crate) fn joint_loads(
                     || c_d != 0.0
                     || jt.stops.is_some()
                     || arm[0] != 0.0
-                    || fric.is_some();
+                    || fric.is_some()
+                    || !jt.acts.is_empty();
                 if loaded {
                     let dqa = a.map_or(zero, |a| body_nodes(&ws.dq, a));
                     let dqb = body_nodes(&ws.dq, bb);
@@ -268,7 +278,8 @@ pub(crate) fn joint_loads(
                     let ds = row_increment(&tr.sin, qa_bar, qb_bar, &dqa, &dqb);
                     let dc = row_increment(&tr.cos, qa_bar, qb_bar, &dqa, &dqb);
                     let stops = jt.stops.as_ref();
-                    let st = turn_step([s0, c0], [ds, dc], t0, k_s, c_d, stops, arm, fric, h);
+                    let acts = (&jt.acts[..], held.inputs);
+                    let st = turn_step([s0, c0], [ds, dc], t0, k_s, c_d, stops, arm, fric, acts, h);
                     if st.fs == 0.0 && st.fc == 0.0 && st.jac == [0.0; 4] {
                         // stops that neither end of the step has reached, and nothing else
                         turn += 1;

@@ -53,6 +53,7 @@ fn joint(
 /// a spherical-jointed body on the free body, body torque and force loads, gravity.
 pub(crate) fn sample() -> ModelDef {
     ModelDef {
+        actuators: Vec::new(),
         contact: Default::default(),
         gravity: Vec3::new(0.0, 0.0, -9.81),
         bodies: vec![
