@@ -108,4 +108,6 @@ pub fn import(
 }
 
 #[cfg(test)]
+mod actuator_tests;
+#[cfg(test)]
 mod tests;

@@ -1,6 +1,6 @@
 //! The `<actuator>` and `<equality>` sections.
 
-use super::actuator_law::{law, ACTUATOR_KINDS};
+use super::actuator_law::{law, Element, ACTUATOR_KINDS};
 use super::defaults::Attrs;
 use super::model::{Actuator, Equality};
 use super::reader::{limited, refused, Reader};
@@ -27,6 +27,12 @@ pub(super) fn actuators(r: &mut Reader, node: &Node, out: &mut Vec<Actuator>) {
             continue;
         };
         let a = Attrs::with_chain(act, r.classes.defaults_of(class, &ACTUATOR_KINDS));
+        let element = Element {
+            node: act,
+            all: a.chain().to_vec(),
+            same: r.classes.defaults_of(class, &[act.name.as_str()]),
+            general: r.classes.defaults_of(class, &["general"]),
+        };
         let Some(joint) = a.text("joint") else {
             r.problems.push(act.problem(
                 "only actuators on a joint (joint=\"...\") are supported: tendon, site and body transmissions are not",
@@ -42,7 +48,7 @@ pub(super) fn actuators(r: &mut Reader, node: &Node, out: &mut Vec<Actuator>) {
             Ok(Actuator {
                 name: act.attr("name").map(str::to_string),
                 at: act.at(),
-                law: law(&a)?,
+                law: law(&element)?,
                 joint: joint.to_string(),
                 gear: a.numbers("gear", 1, 6)?.map_or(1.0, |g| g[0]),
                 ctrlrange: ctrl.filter(|_| ctrl_on).map(|v| [v[0], v[1]]),

@@ -178,3 +178,44 @@ def test_imported_actuators(triad_bin, tmp_path):
         assert ("forcerange" in a) == bool(m.actuator_forcelimited[i])
         if "ctrlrange" in a:
             assert a["ctrlrange"] == list(m.actuator_ctrlrange[i])
+
+
+DEFAULTS = ['', '<position kp="7"/>', '<velocity kv="5"/>', '<general gainprm="4"/>', '<position kp="7" kv="2"/>',
+            '<general biastype="affine" biasprm="0 -3 -1" gainprm="3"/>', '<motor gear="2" ctrlrange="-1 2"/>',
+            '<position kp="7"/><default class="c"><velocity kv="3" forcerange="-1 1"/></default>']
+ELEMENTS = ['<position joint="h"/>', '<velocity joint="h"/>', '<motor joint="h"/>', '<general joint="h"/>',
+            '<position joint="h" kp="9"/>', '<velocity joint="h" class="c"/>', '<position joint="h" class="c"/>']
+
+
+@pytest.mark.parametrize("default", DEFAULTS)
+def test_actuator_defaults_as_mujoco_compiles_them(triad_bin, tmp_path, default):
+    """Every actuator element under every kind of actuator default: the imported law, gain,
+    bias, gear and clamps are MuJoCo's compiled `actuator_gainprm`, `biasprm`, `gear`, ranges."""
+    import tomllib
+    for element in ELEMENTS:
+        if 'class="c"' in element and 'class="c"' not in default:
+            continue
+        text = (f'<mujoco><default>{default}</default><worldbody><body><joint name="h"/><geom size="0.1"/>'
+                f'</body></worldbody><actuator>{element}</actuator></mujoco>')
+        xml = tmp_path / "d.xml"
+        xml.write_text(text)
+        run = subprocess.run([triad_bin, "import", str(xml)], capture_output=True, text=True, timeout=60)
+        m = mujoco.MjModel.from_xml_string(text)
+        gain, bias = m.actuator_gainprm[0, :3], m.actuator_biasprm[0, :3]
+        if run.returncode != 0:
+            # refused: then MuJoCo's law is none of the three either (here: gain 4, no bias)
+            assert "none of the laws" in run.stderr, run.stderr
+            assert m.actuator_biastype[0] == 0 and gain[0] != 1, (default, element)
+            continue
+        a = tomllib.loads(run.stdout)["actuator"][0]
+        ours = {"motor": ([1, 0, 0], [0, 0, 0]),
+                "position": ([a.get("kp"), 0, 0], [0, -a.get("kp", 0), -a.get("kv", 0)]),
+                "velocity": ([a.get("kv"), 0, 0], [0, 0, -a.get("kv", 0)])}[a["kind"]]
+        if a["kind"] == "motor":
+            assert m.actuator_biastype[0] == 0, (default, element)
+        else:
+            assert list(bias) == ours[1], (default, element, a)
+        assert list(gain) == ours[0], (default, element, a)
+        assert a.get("gear", 1.0) == m.actuator_gear[0, 0], (default, element)
+        assert ("ctrlrange" in a) == bool(m.actuator_ctrllimited[0]), (default, element)
+        assert ("forcerange" in a) == bool(m.actuator_forcelimited[0]), (default, element)
