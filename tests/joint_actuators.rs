@@ -217,10 +217,10 @@ fn the_minimal_dynamics_has_the_same_laws() {
     let lin = Operating::of(&m, &s).unwrap().linearize(&[]).unwrap();
     let (g, kp, kv, i) = (2.0, 30.0, 4.0, 0.5);
     let want_a = [[0.0, 1.0], [-g * g * kp / i, -g * g * kv / i]];
-    for r in 0..2 {
-        for c in 0..2 {
+    for (r, row) in want_a.iter().enumerate() {
+        for (c, want) in row.iter().enumerate() {
             assert!(
-                (lin.a[(r, c)] - want_a[r][c]).abs() < 1e-12,
+                (lin.a[(r, c)] - want).abs() < 1e-12,
                 "A {r} {c}: {}",
                 lin.a
             );
