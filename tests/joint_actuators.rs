@@ -219,11 +219,7 @@ fn the_minimal_dynamics_has_the_same_laws() {
     let want_a = [[0.0, 1.0], [-g * g * kp / i, -g * g * kv / i]];
     for (r, row) in want_a.iter().enumerate() {
         for (c, want) in row.iter().enumerate() {
-            assert!(
-                (lin.a[(r, c)] - want).abs() < 1e-12,
-                "A {r} {c}: {}",
-                lin.a
-            );
+            assert!((lin.a[(r, c)] - want).abs() < 1e-12, "A {r} {c}: {}", lin.a);
         }
     }
     assert!(
