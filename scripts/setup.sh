@@ -38,10 +38,13 @@ if [ ${#need_apt[@]} -gt 0 ]; then
 fi
 
 if [ ! -x .venv/bin/python ] || ! .venv/bin/python -c "import fmpy" >/dev/null 2>&1 \
-   || ! cmp -s tests/python/requirements.txt .venv/.requirements 2>/dev/null; then
+   || ! cmp -s tests/python/requirements.txt .venv/.requirements 2>/dev/null \
+   || ! cmp -s tests/python/requirements-nodeps.txt .venv/.requirements-nodeps 2>/dev/null; then
   echo "setup: creating .venv"
   python3 -m venv .venv
   .venv/bin/pip install -q --upgrade pip
   .venv/bin/pip install -q -r tests/python/requirements.txt
+  .venv/bin/pip install -q --no-deps -r tests/python/requirements-nodeps.txt
   cp tests/python/requirements.txt .venv/.requirements
+  cp tests/python/requirements-nodeps.txt .venv/.requirements-nodeps
 fi

@@ -85,6 +85,7 @@ fn joint(
 fn model(bodies: Vec<BodyDef>, joints: Vec<JointDef>, gravity: Vec3) -> ModelDef {
     ModelDef {
         couplings: Vec::new(),
+        actuators: Vec::new(),
         contact: Default::default(),
         gravity,
         bodies,

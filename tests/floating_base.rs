@@ -93,6 +93,7 @@ fn floating_tree(gravity: Vec3) -> ModelDef {
     jw.damping = 1e-3;
     ModelDef {
         couplings: Vec::new(),
+        actuators: Vec::new(),
         contact: Default::default(),
         gravity,
         bodies,

@@ -41,6 +41,7 @@ fn top(w_world: Vec3) -> ModelDef {
     };
     ModelDef {
         couplings: Vec::new(),
+        actuators: Vec::new(),
         contact: Default::default(),
         gravity: Vec3::new(0.0, 0.0, -G),
         bodies: vec![body(

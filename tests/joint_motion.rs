@@ -38,6 +38,7 @@ fn pair(kind: JointType) -> ModelDef {
     };
     ModelDef {
         couplings: Vec::new(),
+        actuators: Vec::new(),
         contact: Default::default(),
         gravity: Vec3::zeros(),
         bodies: vec![
@@ -120,6 +121,7 @@ fn angles_unwrap_from_the_given_initial_value() {
     set_q(&mut j, &[4.0], &[10.0]);
     let def = ModelDef {
         couplings: Vec::new(),
+        actuators: Vec::new(),
         contact: Default::default(),
         gravity: Vec3::zeros(),
         bodies: vec![body(

@@ -110,6 +110,7 @@ fn setup(kind: JointType, world_parent: bool, seed: u64) -> ModelDef {
     };
     ModelDef {
         couplings: Vec::new(),
+        actuators: Vec::new(),
         contact: Default::default(),
         gravity: Vec3::zeros(),
         bodies,

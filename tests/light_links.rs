@@ -66,6 +66,7 @@ fn chain(m: f64) -> ModelDef {
     }
     ModelDef {
         couplings: Vec::new(),
+        actuators: Vec::new(),
         contact: Default::default(),
         gravity: Vec3::new(0.0, 0.0, -G),
         bodies,

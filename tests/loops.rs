@@ -77,6 +77,7 @@ fn four_bar(th: f64, rates: [f64; 3]) -> ModelDef {
     close.child_frame.translation = Vec3::new(1.0, 0.0, 0.0);
     ModelDef {
         couplings: Vec::new(),
+        actuators: Vec::new(),
         contact: Default::default(),
         gravity: Vec3::new(0.0, -9.81, 0.0),
         bodies: vec![

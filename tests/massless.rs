@@ -56,6 +56,7 @@ fn wrist_with_yoke() -> ModelDef {
     let wrist = Vec3::new(0.0, 0.0, -0.6);
     ModelDef {
         couplings: Vec::new(),
+        actuators: Vec::new(),
         contact: Default::default(),
         gravity: Vec3::new(0.0, 0.0, -9.81),
         bodies: vec![
@@ -102,6 +103,7 @@ fn wrist_universal() -> ModelDef {
     u.axis2 = Vec3::x();
     ModelDef {
         couplings: Vec::new(),
+        actuators: Vec::new(),
         contact: Default::default(),
         gravity: Vec3::new(0.0, 0.0, -9.81),
         bodies: vec![arm(), hand()],
@@ -174,6 +176,7 @@ fn welded_chain(merged: bool) -> ModelDef {
         };
         return ModelDef {
             couplings: Vec::new(),
+            actuators: Vec::new(),
             contact: Default::default(),
             gravity: Vec3::new(0.0, 0.0, -9.81),
             bodies,
@@ -207,6 +210,7 @@ fn welded_chain(merged: bool) -> ModelDef {
     j2.parent_frame = j2f;
     ModelDef {
         couplings: Vec::new(),
+        actuators: Vec::new(),
         contact: Default::default(),
         gravity: Vec3::new(0.0, 0.0, -9.81),
         bodies,
@@ -316,6 +320,7 @@ fn rod(kind: JointType) -> ModelDef {
     }
     ModelDef {
         couplings: Vec::new(),
+        actuators: Vec::new(),
         contact: Default::default(),
         gravity: Vec3::new(0.0, 0.0, -9.81),
         bodies: vec![body(

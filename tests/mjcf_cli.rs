@@ -51,13 +51,19 @@ fn import_check_describe_and_options() {
         text.contains("# MJCF line 4: <body name=\"upper\">"),
         "{text}"
     );
-    assert!(text.contains("q = 0.5") && text.contains("effort = 3.0") && text.contains("[ground]"));
+    assert!(
+        text.contains("q = 0.5")
+            && text.contains("[[actuator]]")
+            && text.contains("ctrlrange = [-3.0, 3.0]")
+            && text.contains("[ground]"),
+        "{text}"
+    );
     let spec = triad::spec::Spec::from_path(&toml).unwrap();
     assert_eq!(spec.collision.len(), 1);
     let (ok, out, err) = triad(&["check", xml, "--no-contacts"]);
     assert!(ok && out.contains("ok"), "{out}{err}");
     let (ok, out, _) = triad(&["describe", xml]);
-    assert!(ok && out.contains("joint.shoulder.tau") && out.contains("contact.upper.gap"));
+    assert!(ok && out.contains("actuator.shoulder.ctrl") && out.contains("contact.upper.gap"));
     // MJCF options for a spec, URDF options for an MJCF file: refused
     let (ok, _, err) = triad(&["check", toml.to_str().unwrap(), "--keyframe", "up"]);
     assert!(

@@ -70,6 +70,7 @@ proptest! {
         let m2 = moments(e2);
         let def = ModelDef {
             couplings: Vec::new(),
+            actuators: Vec::new(),
             contact: Default::default(),
             gravity: Vec3::zeros(),
             bodies: vec![

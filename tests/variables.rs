@@ -83,6 +83,9 @@ fn inputs_follow_the_model_slots() {
                 InputSlot::BodyForce { body, i } => {
                     v.name == format!("body.{}.force[{}]", def.bodies[body].name, i + 1)
                 }
+                InputSlot::ActuatorCtrl { actuator } => {
+                    v.name == format!("actuator.{}.ctrl", def.actuators[actuator].name)
+                }
             };
             assert!(
                 ok,

@@ -34,6 +34,7 @@ fn b7(damping: f64) -> ModelDef {
     rev.damping = damping;
     ModelDef {
         couplings: Vec::new(),
+        actuators: Vec::new(),
         contact: Default::default(),
         gravity: Vec3::new(0.0, 0.0, -9.81),
         bodies: vec![
@@ -133,6 +134,7 @@ fn floating() -> ModelDef {
     cyl.damping = 0.1;
     ModelDef {
         couplings: Vec::new(),
+        actuators: Vec::new(),
         contact: Default::default(),
         gravity: Vec3::zeros(),
         bodies: vec![

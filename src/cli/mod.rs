@@ -137,7 +137,9 @@ pub enum Command {
     /// into their parents, inertials given or computed from the geoms as MuJoCo does, default
     /// classes, includes, keyframes (--keyframe), geoms as collision shapes touching the
     /// world's plane (unless --no-contacts), connect and weld equalities as loop-closing
-    /// joints, motors as actuated joints. Joint coordinates are MuJoCo's qpos (angles in the
+    /// joints, motor, position and velocity actuators on hinges and slides as [[actuator]]
+    /// (the input actuator.A.ctrl, MuJoCo's laws, gear and clamps). Joint coordinates are
+    /// MuJoCo's qpos (angles in the
     /// file's <compiler angle> unit, degrees by default). What is not reproduced is noted in
     /// the output; tendons, muscles, flex, composites and plugins are refused.
     Import {

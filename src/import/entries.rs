@@ -52,5 +52,6 @@ pub(crate) fn empty_spec(name: String, description: String) -> Spec {
         contact_pair: Vec::new(),
         self_collision: false,
         coupling: Vec::new(),
+        actuator: Vec::new(),
     }
 }

@@ -30,9 +30,9 @@ mod run;
 mod step;
 
 pub use model::def::{
-    BodyDef, BodyIndex, BodyLoadDef, ContactDef, ContactLaw, CouplingDef, Frame, FreeBodyInitial,
-    GroundDef, JointDef, JointInitial, JointLimits, JointType, ModelDef, ShapeDef, ShapeKind,
-    SiteDef, SolverSettings, STOP_STIFFNESS,
+    ActuatorDef, ActuatorLaw, BodyDef, BodyIndex, BodyLoadDef, ContactDef, ContactLaw, CouplingDef,
+    Frame, FreeBodyInitial, GroundDef, JointDef, JointInitial, JointLimits, JointType, ModelDef,
+    ShapeDef, ShapeKind, SiteDef, SolverSettings, STOP_STIFFNESS,
 };
 pub use model::error::ModelError;
 pub use model::linear::{Linear, Quantity};

@@ -1,14 +1,18 @@
-//! Actuators: the joint of each becomes `actuated` (input `joint.J.tau` or `joint.J.f`), its
-//! `effort` the smaller of `|gear| × ctrlrange` and `forcerange`; what is not reproduced (a
-//! gear other than 1, servo laws, asymmetric ranges) is noted.
+//! Actuators: each `<motor>`, `<position>`, `<velocity>` (or `<general>` equal to one of them,
+//! `actuator_law`) on a hinge or slide becomes an `[[actuator]]` with its law, `gear`, and the
+//! `ctrlrange`/`forcerange` MuJoCo clamps by (`ctrllimited`, `forcelimited`, autolimits): the
+//! input `actuator.A.ctrl`. A ball or free joint's actuator is refused.
 
 use std::collections::HashMap;
 
 use super::lower::Outcome;
-use super::model::{ActuatorKind, Model};
-use crate::spec::{JointKind, Problem, Spec};
+use super::model::Model;
+use crate::import::names::Namer;
+use crate::mechanics::ActuatorLaw;
+use crate::spec::{ActuatorKind, ActuatorSpec, JointKind, Problem, Spec};
 
-/// Marks the joints of the actuators as actuated, with their effort limit.
+/// Adds the model's actuators to `spec` (its joints already lowered: `joint_of` maps MuJoCo
+/// joint names to spec joints).
 pub(super) fn actuators(
     m: &Model,
     joint_of: &HashMap<String, usize>,
@@ -16,6 +20,7 @@ pub(super) fn actuators(
     out: &mut Outcome,
     problems: &mut Vec<Problem>,
 ) {
+    let mut names = Namer::default();
     for a in &m.actuators {
         let Some(&k) = joint_of.get(a.joint.as_str()) else {
             problems.push(Problem::new(
@@ -24,55 +29,45 @@ pub(super) fn actuators(
             ));
             continue;
         };
-        let j = &mut spec.joint[k];
-        let name = a.name.as_deref().unwrap_or(&a.joint);
-        if j.kind == JointKind::Spherical {
-            out.notes.push(format!("actuator '{name}' on ball joint '{}': not imported (triad's spherical inputs are torques about the parent axes)", a.joint));
+        let j = &spec.joint[k];
+        if !matches!(j.kind, JointKind::Revolute | JointKind::Prismatic) {
+            problems.push(Problem::new(
+                a.at.clone(),
+                format!(
+                    "actuator on joint \"{}\": only actuators on hinge and slide joints are supported",
+                    a.joint
+                ),
+            ));
             continue;
         }
-        let input = if j.kind == JointKind::Revolute {
-            "tau"
-        } else {
-            "f"
-        };
-        if j.actuated {
-            out.notes.push(format!("actuator '{name}': joint '{}' already has an actuator; both act through joint.{}.{input}", a.joint, j.name));
-        }
-        j.actuated = true;
-        let bound = |r: Option<[f64; 2]>, scale: f64| {
-            r.map(|[lo, hi]| (lo * scale).abs().min((hi * scale).abs()))
-        };
-        let symmetric = |r: Option<[f64; 2]>| r.is_none_or(|[lo, hi]| lo == -hi);
-        let effort = match (bound(a.ctrlrange, a.gear), bound(a.forcerange, 1.0)) {
-            (Some(x), Some(y)) => Some(x.min(y)),
-            (x, y) => x.or(y),
-        }
-        .filter(|e| *e > 0.0);
-        j.effort = effort;
-        let tail = format!(
-            "the input is the joint's generalised force joint.{}.{input}",
-            j.name
-        );
-        match a.kind {
-            ActuatorKind::Motor if a.gear == 1.0 && symmetric(a.ctrlrange) && symmetric(a.forcerange) => {}
-            ActuatorKind::Motor if a.gear == 1.0 => out.notes.push(format!(
-                "actuator '{name}': an asymmetric ctrlrange/forcerange is clamped to ±{} (the smaller bound); {tail}",
-                effort.unwrap_or(0.0)
-            )),
-            ActuatorKind::Motor => out.notes.push(format!(
-                "actuator '{name}': gear {} is not applied: {tail} (= gear × ctrl; actuator.{name}.ctrl is not available yet)",
-                a.gear
-            )),
-            ActuatorKind::Position | ActuatorKind::Velocity | ActuatorKind::General => {
-                let kind = match a.kind {
-                    ActuatorKind::Position => "position servo",
-                    ActuatorKind::Velocity => "velocity servo",
-                    _ => "general actuator",
-                };
-                out.notes.push(format!(
-                    "actuator '{name}' ({kind}): MuJoCo's actuator law is not reproduced: {tail} (actuator.{name}.ctrl is not available yet)"
-                ));
+        let original = a.name.as_deref().unwrap_or(&a.joint);
+        let name = names.name(original);
+        let (kind, kp, kv) = match a.law {
+            ActuatorLaw::Motor => (ActuatorKind::Motor, None, None),
+            ActuatorLaw::Position { kp, kv } => {
+                (ActuatorKind::Position, Some(kp), (kv != 0.0).then_some(kv))
             }
-        }
+            ActuatorLaw::Velocity { kv } => (ActuatorKind::Velocity, None, Some(kv)),
+        };
+        let description = if a.name.as_deref() == Some(name.as_str()) {
+            String::new()
+        } else {
+            a.name.as_ref().map_or_else(
+                || format!("MJCF actuator on joint \"{}\"", a.joint),
+                |n| format!("MJCF actuator \"{n}\""),
+            )
+        };
+        out.actuators.push(a.at.clone());
+        spec.actuator.push(ActuatorSpec {
+            name,
+            joint: j.name.clone(),
+            kind,
+            gear: a.gear,
+            kp,
+            kv,
+            ctrlrange: a.ctrlrange,
+            forcerange: a.forcerange,
+            description,
+        });
     }
 }

@@ -105,6 +105,27 @@ impl<'a> Classes<'a> {
     }
 }
 
+impl<'a> Classes<'a> {
+    /// The default elements of any of the element kinds `kinds` of class `class` and the
+    /// classes above it, nearest class first and, within a class, the later element first (the
+    /// order in which an attribute is looked up). MuJoCo's actuator elements (`general`,
+    /// `motor`, `position`, …) all write one actuator default per class.
+    pub fn defaults_of(&self, class: usize, kinds: &[&str]) -> Vec<&'a Node> {
+        let mut out = Vec::new();
+        let mut at = Some(class);
+        while let Some(c) = at {
+            let mut own: Vec<&Node> = kinds
+                .iter()
+                .filter_map(|k| self.classes[c].kinds.get(k).copied())
+                .collect();
+            own.sort_by_key(|n| std::cmp::Reverse(n.line));
+            out.extend(own);
+            at = self.classes[c].parent;
+        }
+        out
+    }
+}
+
 /// An element's attributes, its class's defaults behind them.
 #[derive(Debug)]
 pub(super) struct Attrs<'b> {
@@ -115,6 +136,16 @@ pub(super) struct Attrs<'b> {
 }
 
 impl<'b> Attrs<'b> {
+    /// The attributes of `node` with the default elements `chain` (nearest first) behind them.
+    pub fn with_chain(node: &'b Node, chain: Vec<&'b Node>) -> Self {
+        Attrs { node, chain }
+    }
+
+    /// The default elements behind the element, nearest first.
+    pub fn chain(&self) -> &[&'b Node] {
+        &self.chain
+    }
+
     /// The attributes of `node` alone (an element that takes no defaults).
     pub fn own(node: &'b Node) -> Self {
         Attrs {

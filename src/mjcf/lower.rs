@@ -42,6 +42,8 @@ pub struct Outcome {
     pub joints: Vec<String>,
     /// Where each `[[collision]]` came from, in the spec's order.
     pub collisions: Vec<String>,
+    /// The MJCF element of each `[[actuator]]`, in the spec's order.
+    pub actuators: Vec<String>,
 }
 
 /// The spec and what the later stages (actuators, keyframe, equalities, contacts) need.

@@ -7,7 +7,8 @@
 //! orientation forms), `inertia` (geom mass properties), `model` (the typed document), `read`
 //! with `reader`, `bodies` and `sections` (reading it, every problem with file, line and
 //! element), `lower` (→ `Spec`: frames so that `joint.J.q` is MuJoCo's `qpos`, inertials,
-//! sites), `actuators`, `keyframe` (the initial state), `equality` (loop-closing joints),
+//! sites), `actuators` with `actuator_law` (MuJoCo's actuator parameters → a motor, position or
+//! velocity servo), `keyframe` (the initial state), `equality` (loop-closing joints),
 //! `contacts` (geoms as collision shapes, the world plane as the ground), `write` (commented
 //! TOML), `options`.
 //!
@@ -17,13 +18,16 @@
 //!   site); several joints in one body are chained through massless bodies;
 //! - `ref` is exact (the joint frame is turned or shifted by it), so `q` = `qpos`; a hinge's or
 //!   slide's `armature` and `frictionloss` are the joint's `armature` and Coulomb `friction`;
-//!   `springref`, a ball joint's armature and frictionloss, `<equality joint>`, actuator gears
-//!   other than 1 and servo laws are imported with a note saying what is not reproduced;
+//!   `springref`, a ball joint's armature and frictionloss and `<equality joint>` are imported
+//!   with a note saying what is not reproduced;
+//! - `<motor>`, `<position>`, `<velocity>` (and `<general>` equal to one of them) on a hinge or
+//!   slide are `[[actuator]]`s with MuJoCo's law, gear and clamps: the input `actuator.A.ctrl`;
 //! - `<equality connect>` → a loop-closing spherical joint, `weld` → a loop-closing fixed joint,
 //!   both at the bodies' places at `qpos0`;
 //! - tendons, muscles, flex, composites and plugins are refused; lights, cameras, materials,
 //!   textures, sensors and visual settings are ignored.
 
+mod actuator_law;
 mod actuators;
 mod bodies;
 mod contacts;
@@ -103,5 +107,7 @@ pub fn import(
     }
 }
 
+#[cfg(test)]
+mod actuator_tests;
 #[cfg(test)]
 mod tests;

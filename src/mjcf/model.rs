@@ -122,21 +122,12 @@ pub(super) struct Key {
     pub qvel: Option<Vec<f64>>,
 }
 
-/// Actuator kinds read (the rest are refused).
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
-pub(super) enum ActuatorKind {
-    Motor,
-    Position,
-    Velocity,
-    General,
-}
-
-/// An actuator on a joint.
+/// An actuator on a joint (`ctrlrange`, `forcerange`: given and limited).
 #[derive(Clone, Debug)]
 pub(super) struct Actuator {
     pub name: Option<String>,
     pub at: String,
-    pub kind: ActuatorKind,
+    pub law: crate::mechanics::ActuatorLaw,
     pub joint: String,
     pub gear: f64,
     pub ctrlrange: Option<[f64; 2]>,

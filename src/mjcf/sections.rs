@@ -1,6 +1,8 @@
 //! The `<actuator>` and `<equality>` sections.
 
-use super::model::{Actuator, ActuatorKind, Equality};
+use super::actuator_law::{law, Element, ACTUATOR_KINDS};
+use super::defaults::Attrs;
+use super::model::{Actuator, Equality};
 use super::reader::{limited, refused, Reader};
 use super::xml::Node;
 use crate::math::Vec3;
@@ -13,22 +15,24 @@ pub(super) fn actuators(r: &mut Reader, node: &Node, out: &mut Vec<Actuator>) {
             r.problems.push(p);
             continue;
         }
-        let kind = match act.name.as_str() {
-            "motor" => ActuatorKind::Motor,
-            "position" => ActuatorKind::Position,
-            "velocity" => ActuatorKind::Velocity,
-            "general" => ActuatorKind::General,
-            other => {
-                r.problems.push(act.problem(format!(
-                    "actuator <{other}> is not supported (motor, position, velocity, general on a joint are)"
-                )));
-                continue;
-            }
-        };
+        if !ACTUATOR_KINDS.contains(&act.name.as_str()) {
+            r.problems.push(act.problem(format!(
+                "actuator <{}> is not supported (motor, position, velocity, and general with their laws, on a joint are)",
+                act.name
+            )));
+            continue;
+        }
+        // an actuator's class is its own `class`, else main (bodies' childclass does not reach it)
         let Some(class) = r.ok(r.classes.of(act, 0)) else {
             continue;
         };
-        let a = r.classes.attrs(act, class);
+        let a = Attrs::with_chain(act, r.classes.defaults_of(class, &ACTUATOR_KINDS));
+        let element = Element {
+            node: act,
+            all: a.chain().to_vec(),
+            same: r.classes.defaults_of(class, &[act.name.as_str()]),
+            general: r.classes.defaults_of(class, &["general"]),
+        };
         let Some(joint) = a.text("joint") else {
             r.problems.push(act.problem(
                 "only actuators on a joint (joint=\"...\") are supported: tendon, site and body transmissions are not",
@@ -44,7 +48,7 @@ pub(super) fn actuators(r: &mut Reader, node: &Node, out: &mut Vec<Actuator>) {
             Ok(Actuator {
                 name: act.attr("name").map(str::to_string),
                 at: act.at(),
-                kind,
+                law: law(&element)?,
                 joint: joint.to_string(),
                 gear: a.numbers("gear", 1, 6)?.map_or(1.0, |g| g[0]),
                 ctrlrange: ctrl.filter(|_| ctrl_on).map(|v| [v[0], v[1]]),

@@ -1,5 +1,5 @@
 //! The imported spec as editable TOML: the spec's own serialisation (shortest numbers), a
-//! header with the notes, and a comment before every body, joint and collision shape naming
+//! header with the notes, and a comment before every body, joint, collision shape and actuator naming
 //! the MJCF element it came from.
 
 use super::lower::Outcome;
@@ -20,7 +20,7 @@ pub fn to_toml(spec: &Spec, outcome: &Outcome) -> Result<String, String> {
         out.push_str(&format!("# note: {n}\n"));
     }
     out.push('\n');
-    let (mut b, mut j, mut c) = (0, 0, 0);
+    let (mut b, mut j, mut c, mut a) = (0, 0, 0, 0);
     for line in body.lines() {
         let source = match line.trim() {
             "[[body]]" => {
@@ -35,6 +35,10 @@ pub fn to_toml(spec: &Spec, outcome: &Outcome) -> Result<String, String> {
                 c += 1;
                 outcome.collisions.get(c - 1)
             }
+            "[[actuator]]" => {
+                a += 1;
+                outcome.actuators.get(a - 1)
+            }
             "load = []" => continue,
             _ => None,
         };
@@ -48,7 +52,7 @@ pub fn to_toml(spec: &Spec, outcome: &Outcome) -> Result<String, String> {
 }
 
 /// Problems of an imported spec (validated after import) told in the MJCF's terms: the path
-/// `body[i]…` becomes `<MJCF element> (body[i]…)`, and so for joints.
+/// `body[i]…` becomes `<MJCF element> (body[i]…)`, and so for joints, shapes and actuators.
 #[must_use]
 pub fn in_mjcf_terms(mut errors: SpecErrors, outcome: &Outcome) -> SpecErrors {
     for p in &mut errors.problems {
@@ -65,6 +69,7 @@ pub fn in_mjcf_terms(mut errors: SpecErrors, outcome: &Outcome) -> SpecErrors {
             "body" => outcome.bodies.get(i),
             "joint" => outcome.joints.get(i),
             "collision" => outcome.collisions.get(i),
+            "actuator" => outcome.actuators.get(i),
             _ => None,
         };
         if let Some(s) = source {

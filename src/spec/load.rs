@@ -6,7 +6,7 @@ use serde::de::DeserializeOwned;
 
 use super::error::{did_you_mean, Problem, Report, SpecErrors};
 use super::prune;
-use super::schema::{Format, JointKind, Spec, JOINT_TYPES};
+use super::schema::{ActuatorKind, Format, JointKind, Spec, ACTUATOR_KINDS, JOINT_TYPES};
 use super::values::{Coords, InertiaSpec, OrientationSpec};
 
 /// A parsed document node, TOML or JSON (kept apart: TOML can hold `nan`, JSON values cannot).
@@ -106,6 +106,18 @@ fn joint_type(n: Node<'_>) -> Result<(), String> {
         "unknown joint type \"{word}\"; valid types are {}{}",
         JOINT_TYPES.join(", "),
         did_you_mean(&word, JOINT_TYPES)
+    ))
+}
+
+fn actuator_kind(n: Node<'_>) -> Result<(), String> {
+    let word: String = n.parse()?;
+    if n.parse::<ActuatorKind>().is_ok() {
+        return Ok(());
+    }
+    Err(format!(
+        "unknown actuator kind \"{word}\"; valid kinds are {}{}",
+        ACTUATOR_KINDS.join(", "),
+        did_you_mean(&word, ACTUATOR_KINDS.iter().copied())
     ))
 }
 
@@ -227,6 +239,18 @@ const COUPLING: &[Field] = &[
     opt("ratio", NUM),
     opt("offset", NUM),
 ];
+const RANGE: Check = Check::Value(is::<[f64; 2]>);
+const ACTUATOR: &[Field] = &[
+    req("name", TEXT),
+    req("joint", TEXT),
+    req("kind", Check::Value(actuator_kind)),
+    opt("gear", NUM),
+    opt("kp", NUM),
+    opt("kv", NUM),
+    opt("ctrlrange", RANGE),
+    opt("forcerange", RANGE),
+    opt("description", TEXT),
+];
 const TOP: &[Field] = &[
     req("name", TEXT),
     opt("description", TEXT),
@@ -243,6 +267,7 @@ const TOP: &[Field] = &[
     opt("contact_pair", Check::Tables(PAIR)),
     opt("self_collision", BOOL),
     opt("coupling", Check::Tables(COUPLING)),
+    opt("actuator", Check::Tables(ACTUATOR)),
 ];
 
 fn join(path: &str, key: &str) -> String {

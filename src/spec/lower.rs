@@ -2,12 +2,12 @@
 
 use crate::math::{matrix_to_quat, quat_to_matrix, rpy_to_matrix, Mat3, Vec3};
 use crate::mechanics::{
-    BodyDef, BodyLoadDef, ContactDef, ContactLaw, CouplingDef, Frame, FreeBodyInitial, GroundDef,
-    JointDef, JointInitial, JointLimits, JointType, ModelDef, ShapeDef, ShapeKind, SiteDef,
-    SolverSettings,
+    ActuatorDef, ActuatorLaw, BodyDef, BodyLoadDef, ContactDef, ContactLaw, CouplingDef, Frame,
+    FreeBodyInitial, GroundDef, JointDef, JointInitial, JointLimits, JointType, ModelDef, ShapeDef,
+    ShapeKind, SiteDef, SolverSettings,
 };
 
-use super::schema::{JointKind, JointSpec, OriginSpec, Spec};
+use super::schema::{ActuatorKind, JointKind, JointSpec, OriginSpec, Spec};
 use super::values::{rows_to_matrix, OrientationSpec};
 
 /// The spec's contact: the ground, the shapes (those on known bodies, with a geometry) and
@@ -222,6 +222,34 @@ fn orientation(o: Option<&OrientationSpec>) -> Mat3 {
     }
 }
 
+/// The spec's actuators on the lowered `joints` (those on known joints).
+fn actuators(spec: &Spec, joints: &[JointDef]) -> Vec<ActuatorDef> {
+    spec.actuator
+        .iter()
+        .filter_map(|a| {
+            let joint = joints.iter().position(|j| j.name == a.joint)?;
+            let law = match a.kind {
+                ActuatorKind::Motor => ActuatorLaw::Motor,
+                ActuatorKind::Position => ActuatorLaw::Position {
+                    kp: a.kp.unwrap_or(0.0),
+                    kv: a.kv.unwrap_or(0.0),
+                },
+                ActuatorKind::Velocity => ActuatorLaw::Velocity {
+                    kv: a.kv.unwrap_or(0.0),
+                },
+            };
+            Some(ActuatorDef {
+                name: a.name.clone(),
+                joint,
+                law,
+                gear: a.gear,
+                ctrlrange: a.ctrlrange,
+                forcerange: a.forcerange,
+            })
+        })
+        .collect()
+}
+
 /// Builds the definition of a structurally valid spec (see `validate::structure`); lookups that
 /// cannot fail on such a spec fall back to harmless values instead of panicking.
 pub(crate) fn build(spec: &Spec) -> (ModelDef, SolverSettings) {
@@ -307,8 +335,10 @@ pub(crate) fn build(spec: &Spec) -> (ModelDef, SolverSettings) {
         })
         .collect();
     let contact = contact(spec, &index);
+    let actuators = actuators(spec, &joints);
     let couplings = couplings(spec, &mut joints);
     let def = ModelDef {
+        actuators,
         couplings,
         contact,
         gravity: Vec3::from(spec.gravity),

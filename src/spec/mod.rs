@@ -27,9 +27,12 @@
 //! | `[[joint]]` `stop_stiffness`, `stop_damping` | numbers | the stops' spring (1e4 N·m/rad or N/m) and Hunt–Crossley damping (0) |
 //! | `[[joint]]` `initial = { q, qd }` | number or list | tree joints: coordinates and rates (zeros); spherical: `{ rpy \| quat, w }` |
 //! | `[[load]]` `body`, `torque`, `force` | name, bools | world-frame torque / force-at-COM inputs on a body |
+//! | `[[actuator]]` `name`, `joint`, `kind` | identifier, a revolute or prismatic tree joint, `motor` \| `position` \| `velocity` | the input `actuator.A.ctrl`; the joint receives `gear · F`, `F = ctrl` (motor), `kp (ctrl − L) − kv L̇` (position), `kv (ctrl − L̇)` (velocity), `L = gear · q` (MuJoCo's laws); its work is in `system.work` |
+//! | `[[actuator]]` `gear`, `kp`, `kv` | numbers | gear ≠ 0 (1); kp ≥ 0 (position, required); kv ≥ 0 (velocity: required; position: damping, 0) |
+//! | `[[actuator]]` `ctrlrange`, `forcerange` | `[lo, hi]`, lo < hi | the control, the actuator force `F` clamped (none) |
 //! | `[[site]]` `name`, `body`, `origin = { xyz, rpy }` | identifier, a body, placement | a frame fixed on the body: outputs `site.S.r`, `R`, `v`, `w` |
 //! | `[[visual]]` `body`, `origin`, one of `box`, `cylinder`, `sphere`, `mesh` (+ `scale`), `rgba` | a body or `world`, placement, sizes in m | a shape for the 3-D viewer; no effect on the motion |
-//! | `description` of a body, joint or site | text | appended to the descriptions of its variables (original URDF names) |
+//! | `description` of a body, joint, site or actuator | text | appended to the descriptions of its variables (original URDF names) |
 //!
 //! # Decisions beyond interface.md
 //! - a joint is **loop-closing** exactly when it names `child_origin` (its frame in the child
@@ -57,9 +60,9 @@ mod values;
 
 pub use error::{did_you_mean, Problem, SpecErrors};
 pub use schema::{
-    BodySpec, BoxShape, CollisionSpec, ContactPairSpec, CouplingSpec, Experiment, Format,
-    GroundSpec, InitialSpec, JointKind, JointSpec, LoadSpec, OriginSpec, RoundShape, SiteSpec,
-    SolverSpec, Spec, SphereShape, VisualSpec, JOINT_TYPES,
+    ActuatorKind, ActuatorSpec, BodySpec, BoxShape, CollisionSpec, ContactPairSpec, CouplingSpec,
+    Experiment, Format, GroundSpec, InitialSpec, JointKind, JointSpec, LoadSpec, OriginSpec,
+    RoundShape, SiteSpec, SolverSpec, Spec, SphereShape, VisualSpec, ACTUATOR_KINDS, JOINT_TYPES,
 };
 pub use shipped::bundled;
 pub use values::{Coords, InertiaSpec, OrientationSpec};

@@ -67,6 +67,9 @@ pub struct Spec {
     /// Joint couplings (`[[coupling]]`): joint `b` follows joint `a`.
     #[serde(default, skip_serializing_if = "Vec::is_empty")]
     pub coupling: Vec<CouplingSpec>,
+    /// Joint actuators (`[[actuator]]`): each adds the input `actuator.A.ctrl`.
+    #[serde(default, skip_serializing_if = "Vec::is_empty")]
+    pub actuator: Vec<ActuatorSpec>,
 }
 
 /// `[[coupling]]`: joint `b` follows joint `a`, `q_b = ratio · q_a + offset` (two revolute or
@@ -86,10 +89,6 @@ pub struct CouplingSpec {
     /// `q_b` at `q_a = 0`, rad or m (default 0).
     #[serde(default)]
     pub offset: f64,
-}
-
-fn one() -> f64 {
-    1.0
 }
 
 fn default_friction() -> f64 {
@@ -479,6 +478,63 @@ pub struct VisualSpec {
     pub rgba: Option<[f64; 4]>,
 }
 
+/// The law of an `[[actuator]]` (MuJoCo's `<motor>`, `<position>`, `<velocity>`).
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(rename_all = "lowercase")]
+pub enum ActuatorKind {
+    /// `F = ctrl`.
+    Motor,
+    /// `F = kp (ctrl − L) − kv L̇`, `L = gear · q`.
+    Position,
+    /// `F = kv (ctrl − L̇)`.
+    Velocity,
+}
+
+/// The actuator kinds as written in a spec.
+pub const ACTUATOR_KINDS: &[&str] = &["motor", "position", "velocity"];
+
+fn one() -> f64 {
+    1.0
+}
+#[allow(clippy::trivially_copy_pass_by_ref, clippy::float_cmp)]
+fn is_one(x: &f64) -> bool {
+    *x == 1.0
+}
+
+/// `[[actuator]]`: a control input `actuator.A.ctrl` driving the coordinate `q` of a revolute
+/// or prismatic tree joint through a gear: the joint receives `gear · F`, `F` the actuator force
+/// of its `kind` at `L = gear · q`, `L̇ = gear · q̇` (MuJoCo's law), its work counted in
+/// `system.work`. It adds to the joint's own `joint.J.tau`/`joint.J.f` input, if any.
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct ActuatorSpec {
+    /// Identifier, unique among actuators.
+    pub name: String,
+    /// The driven joint.
+    pub joint: String,
+    /// The law.
+    pub kind: ActuatorKind,
+    /// Transmission ratio (default 1; finite, ≠ 0).
+    #[serde(default = "one", skip_serializing_if = "is_one")]
+    pub gear: f64,
+    /// Position servos: the position gain, N·m/rad or N/m per unit of `L` (≥ 0; required).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub kp: Option<f64>,
+    /// Velocity servos: the velocity gain (required); position servos: the damping gain
+    /// (default 0); N·m·s/rad or N·s/m (≥ 0).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub kv: Option<f64>,
+    /// The control is clamped to `[lo, hi]` (lo < hi; none: unclamped).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub ctrlrange: Option<[f64; 2]>,
+    /// The actuator force `F` is clamped to `[lo, hi]` (lo < hi; none: unclamped).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub forcerange: Option<[f64; 2]>,
+    /// Free text appended to the description of its input (MJCF import: the original name).
+    #[serde(default, skip_serializing_if = "String::is_empty")]
+    pub description: String,
+}
+
 /// `[[load]]`: external inputs on a body (world frame; the force acts at the centre of mass).
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
 #[serde(deny_unknown_fields)]
@@ -529,9 +585,14 @@ impl Spec {
             .iter()
             .map(|j| ("joint", &j.name, &j.description));
         let sites = self.site.iter().map(|s| ("site", &s.name, &s.description));
+        let actuators = self
+            .actuator
+            .iter()
+            .map(|a| ("actuator", &a.name, &a.description));
         bodies
             .chain(joints)
             .chain(sites)
+            .chain(actuators)
             .filter(|(_, _, d)| !d.is_empty())
             .map(|(kind, name, d)| (format!("{kind}.{name}"), d.clone()))
             .collect()

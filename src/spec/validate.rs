@@ -11,6 +11,7 @@ use super::values::{rows_to_matrix, OrientationSpec};
 use super::{kinematics, lower};
 use common::check_finite;
 
+mod actuators;
 mod common;
 mod contact;
 mod couplings;
@@ -255,7 +256,7 @@ pub(crate) fn structure(spec: &Spec) -> Report {
         "body",
         spec.body.iter().map(|b| b.name.as_str()),
     );
-    check_names(
+    let joint_index = check_names(
         &mut report,
         "joint",
         spec.joint.iter().map(|j| j.name.as_str()),
@@ -272,6 +273,7 @@ pub(crate) fn structure(spec: &Spec) -> Report {
     visuals(spec, &mut report, &body_index);
     contact::check(spec, &mut report, &body_index);
     couplings::check(spec, &mut report);
+    actuators::check(spec, &mut report, &joint_index);
     if spec.body.is_empty() {
         report.push("body", "the model has no bodies: add at least one [[body]]");
     }

@@ -3,7 +3,7 @@
 use super::builder::{coord_words, coords, index, Builder, Coord, XYZ};
 use super::params::parameters;
 use super::types::{Accessor, VariableTable};
-use crate::mechanics::{JointType, ModelDef, SolverSettings};
+use crate::mechanics::{ActuatorLaw, JointType, ModelDef, SolverSettings};
 
 impl VariableTable {
     /// Builds the table of a model definition (names from `def`), parameters starting at the
@@ -44,7 +44,7 @@ impl VariableTable {
 }
 
 fn inputs(b: &mut Builder, def: &ModelDef) {
-    // order of `Model::inputs`: joint actuators in joint order, then body loads
+    // order of `Model::inputs`: joint inputs in joint order, body loads, joint actuators
     let mut slot = 0;
     for j in def.joints.iter().filter(|j| j.actuated) {
         let n = &j.name;
@@ -122,6 +122,45 @@ fn inputs(b: &mut Builder, def: &ModelDef) {
             }
             slot += 3;
         }
+    }
+    for a in &def.actuators {
+        let Some(jd) = def.joints.get(a.joint) else {
+            continue;
+        };
+        let angle = jd.kind == JointType::Revolute;
+        let (unit, law) = match a.law {
+            ActuatorLaw::Motor => (
+                if angle { "N.m" } else { "N" },
+                "motor: force = ctrl".to_string(),
+            ),
+            ActuatorLaw::Position { kp, kv } => (
+                if angle { "rad" } else { "m" },
+                format!("position servo: force = {kp}·(ctrl − gear·q) − {kv}·gear·qd"),
+            ),
+            ActuatorLaw::Velocity { kv } => (
+                if angle { "rad/s" } else { "m/s" },
+                format!("velocity servo: force = {kv}·(ctrl − gear·qd)"),
+            ),
+        };
+        let clamp = |what: &str, r: Option<[f64; 2]>| {
+            r.map_or(String::new(), |[lo, hi]| {
+                format!(", {what} clamped to [{lo}, {hi}]")
+            })
+        };
+        b.input(
+            format!("actuator.{}.ctrl", a.name),
+            unit,
+            format!(
+                "control of actuator {} on joint {} ({law}, gear {}; joint load gear·force){}{}",
+                a.name,
+                jd.name,
+                a.gear,
+                clamp("ctrl", a.ctrlrange),
+                clamp("force", a.forcerange)
+            ),
+            slot,
+        );
+        slot += 1;
     }
 }
 

@@ -133,6 +133,7 @@ pub fn free_body(
 ) -> ModelDef {
     ModelDef {
         couplings: Vec::new(),
+        actuators: Vec::new(),
         contact: Default::default(),
         gravity: Vec3::zeros(),
         bodies: vec![body("b", mass, Vec3::zeros(), inertia)],
@@ -227,6 +228,7 @@ pub fn double_pendulum() -> ModelDef {
     set_q(&mut j2, &[0.5], &[]);
     ModelDef {
         couplings: Vec::new(),
+        actuators: Vec::new(),
         contact: Default::default(),
         gravity: Vec3::new(0.0, 0.0, -9.81),
         bodies: vec![body("link1", 1.0, com, i), body("link2", 1.0, com, i)],
@@ -255,6 +257,7 @@ pub fn heavy_top() -> ModelDef {
     };
     ModelDef {
         couplings: Vec::new(),
+        actuators: Vec::new(),
         contact: Default::default(),
         gravity: Vec3::new(0.0, 0.0, -9.81),
         bodies: vec![body(
@@ -315,6 +318,7 @@ pub fn chain(n: usize) -> ModelDef {
     }
     ModelDef {
         couplings: Vec::new(),
+        actuators: Vec::new(),
         contact: Default::default(),
         gravity: Vec3::new(0.0, 0.0, -9.81),
         bodies,
@@ -459,6 +463,7 @@ pub fn four_bar(theta1: f64, crank_rate: f64) -> ModelDef {
     set_q(&mut j2, &[th3 - th2], &[0.0]);
     ModelDef {
         couplings: Vec::new(),
+        actuators: Vec::new(),
         contact: Default::default(),
         gravity: Vec3::new(0.0, -9.81, 0.0),
         bodies: vec![link("crank", a), link("coupler", b), link("rocker", c)],

@@ -12,6 +12,7 @@ use super::constraint::write3;
 use super::def::{JointType, ModelDef, SolverSettings};
 use super::error::ModelError;
 use super::joint::{Dof, JointGeom};
+use super::joint_actuator::JointActuator;
 use super::runtime::{
     covers, euler_tensor, exact_jacobian, BodyRt, DofRt, InputSlot, JointRt, Model, TurnRt,
     ZERO_MOMENT,
@@ -82,6 +83,14 @@ impl Model {
                 (0..3).for_each(|i| inputs.push(InputSlot::BodyForce { body: load.body, i }));
             }
         }
+        let mut joint_acts = vec![Vec::new(); def.joints.len()];
+        for (k, a) in def.actuators.iter().enumerate() {
+            if let Some(why) = super::joint_actuator::invalid(def, a) {
+                return Err(ModelError::Invalid(why));
+            }
+            joint_acts[a.joint].push(JointActuator::new(a, inputs.len()));
+            inputs.push(InputSlot::ActuatorCtrl { actuator: k });
+        }
         if !(settings.max_step.is_finite() && settings.max_step > 0.0) {
             return Err(ModelError::Invalid(format!(
                 "max_step must be positive, got {}",
@@ -135,7 +144,7 @@ impl Model {
             naive_torque: false,
             contact: super::contact::build(def),
         };
-        build(&mut model, &joint_input)?;
+        build(&mut model, &joint_input, joint_acts)?;
         super::determinacy::check(&model)?;
         if let Some(note) = super::contact::period_note(def, &settings) {
             model.notes.push(note);
@@ -211,7 +220,11 @@ fn mass_data(def: &ModelDef) -> Result<(Vec<BodyRt>, f64), ModelError> {
 }
 
 /// Fills the joint, tree and initial-state parts of `model`.
-pub(crate) fn build(model: &mut Model, joint_input: &[Option<usize>]) -> Result<(), ModelError> {
+pub(crate) fn build(
+    model: &mut Model,
+    joint_input: &[Option<usize>],
+    mut joint_acts: Vec<Vec<JointActuator>>,
+) -> Result<(), ModelError> {
     let def = model.def().clone();
     let nb = def.bodies.len();
     let tree = super::kinematics::tree_order(&def)?;
@@ -330,6 +343,7 @@ pub(crate) fn build(model: &mut Model, joint_input: &[Option<usize>]) -> Result<
             friction: (!spherical && jd.friction > 0.0)
                 .then_some(super::joint_friction::JointFriction { limit: jd.friction }),
             fric0,
+            acts: std::mem::take(&mut joint_acts[j]),
         });
         if !spherical && jd.armature > 0.0 {
             arm0 += dofs_len;

@@ -868,6 +868,7 @@ mod tests {
     fn model(kinds: [ShapeKind; 2]) -> ModelDef {
         ModelDef {
             couplings: Vec::new(),
+            actuators: Vec::new(),
             gravity: Vec3::new(0.0, 0.0, -9.81),
             bodies: vec![body("a"), body("b")],
             joints: Vec::new(),

@@ -324,6 +324,48 @@ pub struct ModelDef {
     pub contact: ContactDef,
     /// Joint couplings `q_b = ratio · q_a + offset` (none by default).
     pub couplings: Vec<CouplingDef>,
+    /// Joint actuators: one control input each, after the joint and body inputs.
+    pub actuators: Vec<ActuatorDef>,
+}
+
+/// The law of a joint actuator: the actuator force `F` from the control `u` and the actuator
+/// length `L = gear·q` and rate `L̇ = gear·q̇` (MuJoCo's motor and servos).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub enum ActuatorLaw {
+    /// `F = u`.
+    Motor,
+    /// A position servo: `F = kp (u − L) − kv L̇` (kp ≥ 0 in N·m/rad or N/m per unit of gear,
+    /// kv ≥ 0 in N·m·s/rad or N·s/m).
+    Position {
+        /// Position gain.
+        kp: f64,
+        /// Damping gain.
+        kv: f64,
+    },
+    /// A velocity servo: `F = kv (u − L̇)` (kv ≥ 0, N·m·s/rad or N·s/m).
+    Velocity {
+        /// Velocity gain.
+        kv: f64,
+    },
+}
+
+/// A joint actuator: a control input acting on the coordinate of a revolute or prismatic tree
+/// joint through a gear; the joint receives the generalised force `gear · F`
+/// (`model::joint_actuator`).
+#[derive(Clone, Debug, PartialEq)]
+pub struct ActuatorDef {
+    /// Identifier, unique among actuators.
+    pub name: String,
+    /// The driven joint (index into [`ModelDef::joints`]).
+    pub joint: usize,
+    /// Its law.
+    pub law: ActuatorLaw,
+    /// Transmission ratio: `L = gear · q`, generalised force `gear · F` (finite, ≠ 0).
+    pub gear: f64,
+    /// The control is clamped to `[lo, hi]` (none: unclamped).
+    pub ctrlrange: Option<[f64; 2]>,
+    /// The actuator force `F` is clamped to `[lo, hi]` (none: unclamped).
+    pub forcerange: Option<[f64; 2]>,
 }
 
 /// A coupling of two joints of the same kind with one coordinate each (revolute or prismatic

@@ -78,6 +78,7 @@ pub(crate) fn four_bar() -> ModelDef {
     let j2 = revolute(Some(1), 2, Vec3::new(b, 0.0, 0.0), Vec3::z(), th3 - th2);
     ModelDef {
         couplings: Vec::new(),
+        actuators: Vec::new(),
         contact: Default::default(),
         gravity: Vec3::new(0.0, -9.81, 0.0),
         bodies: vec![link(a), link(b), link(c)],
@@ -115,6 +116,7 @@ pub(crate) fn hanging_chain(n: usize, axial: f64) -> ModelDef {
     }
     ModelDef {
         couplings: Vec::new(),
+        actuators: Vec::new(),
         contact: Default::default(),
         gravity: Vec3::new(0.0, 0.0, -9.81),
         bodies,

@@ -38,6 +38,7 @@ fn model(joints: &[(Option<usize>, usize, bool)], free: &[usize]) -> ModelDef {
     };
     ModelDef {
         couplings: Vec::new(),
+        actuators: Vec::new(),
         contact: Default::default(),
         gravity: Vec3::zeros(),
         bodies: (0..4).map(body).collect(),

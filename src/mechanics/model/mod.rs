@@ -13,7 +13,8 @@
 //!   (`sink`), and the M-orthogonal projection of velocities onto the admissible ones
 //!   (`projection`; it makes the initial rates consistent and the reported rates exact);
 //! - the one-sided spring written once (`one_sided`); joint stops as an exact discrete gradient
-//!   (`stops`); joint friction as a sticking bristle (`joint_friction`); contact with the ground and between bodies: geometry (`contact`) and laws
+//!   (`stops`); joint friction as a sticking bristle (`joint_friction`); joint actuators' laws
+//!   (`joint_actuator`); contact with the ground and between bodies: geometry (`contact`) and laws
 //!   (`contact_law`);
 //! - the valid range of every parameter and solver setting (`ranges`), shared by the spec
 //!   check and the FMU;
@@ -36,6 +37,7 @@ pub(crate) mod error;
 #[cfg(test)]
 pub(crate) mod fixtures;
 pub mod joint;
+pub(crate) mod joint_actuator;
 pub(crate) mod joint_friction;
 pub(crate) mod kernels;
 pub mod kinematics;

@@ -18,7 +18,7 @@ use crate::mechanics::linalg::tree::Block;
 /// Order: for each joint in model order its actuator inputs (revolute `[tau]`, prismatic
 /// `[f]`, cylindrical `[f, tau]`, universal `[tau1, tau2]`, spherical `[tau1, tau2, tau3]` in
 /// the parent joint frame), then for each body load its torque `[x, y, z]` then force `[x, y, z]`
-/// (world frame).
+/// (world frame), then the control of each joint actuator.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub enum InputSlot {
     /// Actuator torque of a joint, N·m; `k` is 0 for single-torque joints, else the component.
@@ -46,6 +46,11 @@ pub enum InputSlot {
         body: usize,
         /// Component 0..3.
         i: usize,
+    },
+    /// The control of a joint actuator (its units: `ModelDef::actuators`).
+    ActuatorCtrl {
+        /// Actuator index in `ModelDef::actuators`.
+        actuator: usize,
     },
 }
 
@@ -148,6 +153,8 @@ pub(crate) struct JointRt {
     pub friction: Option<super::joint_friction::JointFriction>,
     /// Offset of this joint's friction bristles in the state's `fric` (one per dof).
     pub fric0: usize,
+    /// The actuators driving its coordinate (revolute and prismatic tree joints).
+    pub acts: Vec<super::joint_actuator::JointActuator>,
 }
 
 /// A built, immutable multibody model.

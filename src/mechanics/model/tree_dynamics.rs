@@ -21,8 +21,9 @@
 //!   F_b = m (a_G − g) − f_ext,   N_b = I α + ω × I ω − n_ext + p_G × F_b    (per body)
 //!   Q_k = ω_k · (N − p × F) + u_k · F    (subtree totals; dof k moves the subtree by the
 //!                                          twist ω_k about the point p with velocity u_k there)
-//!   res = Q + a ν̇ − (act − k q − c q̇ + stop(q, q̇))   (actuators clamped to ±effort;
-//!                                                    a: the rotor inertia, armature)
+//!   res = Q + a ν̇ − (act − k q − c q̇ + stop(q, q̇) + Σ τ_A(u_A, q, q̇))
+//!                       (actuators clamped to ±effort; a: the rotor inertia, armature;
+//!                        τ_A: the joint actuators of `joint_actuator`)
 //!   stop(q, q̇) = −k⟨q − upper⟩ + k⟨lower − q⟩ − c (⟨q − upper⟩ + ⟨lower − q⟩) q̇
 //! coordinate rates  q̇ = ν, except  θ̇ = w + ½ θ × w  (spherical),  θ̇ = ω − ½ θ × ω  (free)
 //! energy  E = Σ ½ m|v_G|² + ½ ω·Iω − m g·p_G + Σ (½ k q² + ½ a q̇²) + stops   (as `outputs.rs`)
@@ -39,6 +40,7 @@
 
 use super::def::{JointType, ModelDef};
 use super::joint::joint_frame;
+use super::joint_actuator::JointActuator;
 use super::runtime::Model;
 use super::stops::Stops;
 use crate::math::{Mat3, Vec3};
@@ -116,6 +118,7 @@ struct JointData {
     stops: Option<Stops>,
     effort: f64,
     input: Option<usize>,
+    acts: Vec<JointActuator>,
 }
 
 /// A tree model prepared for the minimal-coordinate dynamics, at given damping and stiffness
@@ -288,6 +291,7 @@ impl TreeDynamics {
                 stops: jt.stops,
                 effort: jt.effort,
                 input: jt.input,
+                acts: jt.acts.clone(),
             }));
         }
         Ok(Self {
@@ -588,6 +592,9 @@ impl TreeDynamics {
                         } else {
                             act
                         };
+                    }
+                    for a in &jd.acts {
+                        gen += a.torque(u[a.input], qk, vk);
                     }
                     if let Some(st) = &jd.stops {
                         let pu = qk - c::<T>(st.upper);

@@ -20,8 +20,7 @@
 //! `∇s(q)Q`, `∇c(q)Q`), and `μ ∂D/∂x` (the Hessians of `s`, `c` and the derivatives of
 //! `β c̄`, `−β s̄` as for a turn load of constant size, `turn::turn_load`).
 
-use super::joint_loads::{add_dot_row, turn_jac, Acc, Pair};
-use super::newton::apply_joint;
+use super::joint_loads::{add_dot_row, apply_joint, turn_jac, Acc, Pair};
 use super::turn::{row_increment, turn_load};
 use super::work::Work;
 use crate::math::Vec3;

@@ -5,7 +5,8 @@
 //! a_b   = Δq_b − h vₙ,b                      (12 per body; v_{n+1} = vₙ + 2a/h in the caller)
 //! θ_b   = ½ Σᵢ d̄ⁱ × Δdᵢ                      (rotation increment, rad, world frame)
 //! W     = Σ f·Δφ + Σ m·θ_b + Σ_joints (τ n̄·(θ_B − θ_A) + F Δs − c Δs²/h − c Δϑ²/h
-//!         − c_stop p̄ Δϑ²/h …)                (τ, F clamped to ±effort)
+//!         − c_stop p̄ Δϑ²/h + τ_act Δ …)      (τ, F clamped to ±effort; τ_act: the joint
+//!                                            actuators' `model::joint_actuator` force)
 //! ϑ_{n+1} = ϑₙ + Δϑ                          (unwrapped joint angles)
 //! ω_{n+1} = 2Δϑ/h − ωₙ                        (rotor rates of joints with an armature)
 //! s_{n+1}, D                                 (joint friction bristles and their loss, in W)
@@ -30,6 +31,7 @@ use crate::mechanics::model::assemble::unwrap;
 use crate::mechanics::model::constraint::body_nodes;
 use crate::mechanics::model::constraint::read3;
 use crate::mechanics::model::constraint::Nodes;
+use crate::mechanics::model::joint_actuator::stage_sum;
 use crate::mechanics::model::kernels::rotation_increment;
 use crate::mechanics::model::runtime::{DofRt, Model};
 
@@ -89,7 +91,7 @@ pub(crate) fn finish(model: &Model, ws: &mut Work, held: &Held, h: f64) -> f64 {
                             gained -= st.loss;
                         }
                     }
-                    work += act * ds;
+                    work += (act + stage_sum(&jt.acts, held.inputs, s0, ds, h).0) * ds;
                     gained -= c_d * ds * ds / h + jt.stops.map_or(0.0, |st| st.loss(s0, ds, h));
                 }
                 DofRt::Turn(tr) => {
@@ -103,6 +105,7 @@ pub(crate) fn finish(model: &Model, ws: &mut Work, held: &Held, h: f64) -> f64 {
                         || jt.stops.is_some()
                         || arm.is_some()
                         || fric.is_some()
+                        || !jt.acts.is_empty()
                     {
                         let (qa_n, qb_n) = (node(&ws.qn, a), node(&ws.qn, Some(bb)));
                         let (qa_bar, qb_bar) = (node(&ws.qbar, a), node(&ws.qbar, Some(bb)));
@@ -113,8 +116,14 @@ pub(crate) fn finish(model: &Model, ws: &mut Work, held: &Held, h: f64) -> f64 {
                         let stops = jt.stops.as_ref();
                         let rotor = arm.map_or([0.0; 2], |i| [jt.armature, ws.arm[i]]);
                         let fr0 = fric.map(|(fr, i)| (fr, ws.fric[i]));
-                        let st = turn_step([s0, c0], [ds, dc], t0, k_s, c_d, stops, rotor, fr0, h);
+                        let acts = (&jt.acts[..], held.inputs);
+                        let st =
+                            turn_step([s0, c0], [ds, dc], t0, k_s, c_d, stops, rotor, fr0, acts, h);
                         ws.ang1[turn] = t0 + st.dt;
+                        if !jt.acts.is_empty() {
+                            // the joint actuators' work τ Δt (module formulas of `turn`)
+                            work += stage_sum(&jt.acts, held.inputs, t0, st.dt, h).0 * st.dt;
+                        }
                         if let Some(i) = arm {
                             ws.arm1[i] = 2.0 * st.dt / h - ws.arm[i];
                         }

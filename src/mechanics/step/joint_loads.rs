@@ -1,5 +1,6 @@
-//! Joint loads of the Newton residual and Jacobian: actuators (consistent torques `±τ n̄` and
-//! slide forces, clamped to `±effort`), linear springs, viscous dampers, one-sided stops
+//! Joint loads of the Newton residual and Jacobian: actuator inputs (consistent torques `±τ n̄`
+//! and slide forces, clamped to `±effort`), joint actuators (`model::joint_actuator`: their
+//! generalised force `τ(q̄, Δ/h)` on the coordinate, with `∂τ/∂Δ`), linear springs, viscous dampers, one-sided stops
 //! (`model::stops`) and rotors (armature `a`: the load `−(2a/h²)(Δ − h ω₀)` of the midpoint
 //! rule on the coordinate with the rotor's rate `ω₀`, `turn`) on the joint coordinates (the midpoint
 //! gradient of a slide, the `atan2` discrete gradient of `turn` for an angle, the rotation
@@ -11,9 +12,10 @@
 use super::turn::{row_increment, theta_jac, turn_step};
 use super::work::{Held, Work};
 use crate::math::Vec3;
-use crate::mechanics::model::constraint::{body_nodes, DotRow, Nodes};
+use crate::mechanics::model::constraint::{body_nodes, read3, write3, DotRow, Nodes};
+use crate::mechanics::model::joint_actuator::stage_sum;
 use crate::mechanics::model::kernels::{
-    linvec_jac, outer, project, push_torque, rotation_increment, row_q, torque_jac,
+    linvec_jac, node_block, outer, project, push_torque, rotation_increment, row_q, torque_jac,
 };
 use crate::mechanics::model::runtime::{DofRt, Model, TurnRt};
 use crate::mechanics::model::sparse_row::SparseRow;
@@ -129,6 +131,7 @@ pub(crate) fn loaded(model: &Model, held: &Held, j: usize) -> bool {
         || held.damping[j] != 0.0
         || jt.armature != 0.0
         || jt.friction.is_some()
+        || !jt.acts.is_empty()
 }
 
 /// Adds the loads of joint `j` (stage size `h`, s) at the pair's iterate to `acc` (and the
@@ -204,9 +207,15 @@ pub(crate) fn joint_loads(
                         (f_fric, df_fric) = (st.force, st.dforce);
                     }
                 }
-                let coef = act - 0.5 * k_s * (s0 + s1) - c_d * ds / h + f_stop - f_rotor + f_fric;
-                let stiff =
-                    k_s != 0.0 || c_d != 0.0 || df_stop != 0.0 || rotor != 0.0 || fric.is_some();
+                let (f_act, df_act) = stage_sum(&jt.acts, held.inputs, s0, ds, h);
+                let coef =
+                    act - 0.5 * k_s * (s0 + s1) - c_d * ds / h + f_stop - f_rotor + f_fric + f_act;
+                let stiff = k_s != 0.0
+                    || c_d != 0.0
+                    || df_stop != 0.0
+                    || rotor != 0.0
+                    || fric.is_some()
+                    || df_act != 0.0;
                 if coef == 0.0 && !stiff {
                     // idle, or stops that neither end of the step has reached
                     continue;
@@ -214,7 +223,7 @@ pub(crate) fn joint_loads(
                 let grad = add_row(row, -hh * coef, fa, fb, &mut ws.cbody, cab);
                 if jac && stiff {
                     // rank-one term d(−hh·coef)/dx = hh (k/2 + c/h − ∂f_stop/∂s₁) ∇s(q) Q
-                    let kap = hh * (0.5 * k_s + c_d / h + rotor - df_stop - df_fric);
+                    let kap = hh * (0.5 * k_s + c_d / h + rotor - df_stop - df_fric - df_act);
                     let mut g1 = [Vec3::zeros(); 8];
                     row.gradient(qa, qb, &mut g1);
                     let cb_ = project(&grad[4..], dbar_b);
@@ -248,7 +257,8 @@ pub(crate) fn joint_loads(
                     || c_d != 0.0
                     || jt.stops.is_some()
                     || arm[0] != 0.0
-                    || fric.is_some();
+                    || fric.is_some()
+                    || !jt.acts.is_empty();
                 if loaded {
                     let dqa = a.map_or(zero, |a| body_nodes(&ws.dq, a));
                     let dqb = body_nodes(&ws.dq, bb);
@@ -258,7 +268,8 @@ pub(crate) fn joint_loads(
                     let ds = row_increment(&tr.sin, qa_bar, qb_bar, &dqa, &dqb);
                     let dc = row_increment(&tr.cos, qa_bar, qb_bar, &dqa, &dqb);
                     let stops = jt.stops.as_ref();
-                    let st = turn_step([s0, c0], [ds, dc], t0, k_s, c_d, stops, arm, fric, h);
+                    let acts = (&jt.acts[..], held.inputs);
+                    let st = turn_step([s0, c0], [ds, dc], t0, k_s, c_d, stops, arm, fric, acts, h);
                     if st.fs == 0.0 && st.fc == 0.0 && st.jac == [0.0; 4] {
                         // stops that neither end of the step has reached, and nothing else
                         turn += 1;
@@ -319,6 +330,15 @@ pub(crate) fn joint_loads(
     }
 }
 
+/// Where a row's node forces and couplings go: the parent's and the child's node forces, the
+/// per-body node couplings and the parent–child coupling.
+pub(crate) type NodeSinks<'a> = (
+    &'a mut [Vec3; 4],
+    &'a mut [Vec3; 4],
+    &'a mut [[f64; 16]],
+    &'a mut [f64; 16],
+);
+
 /// Adds `coef ∇g(q̄)` of `row` to the node forces `fa`, `fb` and (`jac`) `½ coef S` to the node
 /// couplings (`cb` per body, `cab` parent–child); returns `∇g(q̄)` over the eight nodes.
 pub(crate) fn add_dot_row(
@@ -326,12 +346,7 @@ pub(crate) fn add_dot_row(
     coef: f64,
     p: &Pair,
     jac: bool,
-    (fa, fb, cb, cab): (
-        &mut [Vec3; 4],
-        &mut [Vec3; 4],
-        &mut [[f64; 16]],
-        &mut [f64; 16],
-    ),
+    (fa, fb, cb, cab): NodeSinks<'_>,
 ) -> [Vec3; 8] {
     let sr = SparseRow::new(row, p.a.is_some());
     let mut buf = [Vec3::zeros(); 8];
@@ -393,4 +408,42 @@ pub(crate) fn actuator_input(dk: usize, inputs: &[f64], first: usize, effort: f6
         .copied()
         .unwrap_or(0.0)
         .clamp(-effort, effort)
+}
+
+/// Adds what joint `p` accumulated in `acc` (its loads and, in the multiplier form, its rows)
+/// to the node residual and, if `jac`, to the bodies' diagonal blocks; completes the coupling
+/// blocks `acc.x_ab` (parent rows, child columns) and `acc.x_ba`. True if those are to be
+/// used (a Jacobian pass of a joint with a parent body).
+pub(crate) fn apply_joint(ws: &mut Work, p: &Pair, acc: &mut Acc, jac: bool) -> bool {
+    let (a, bb) = (p.a, p.b);
+    if let Some(a) = a {
+        for k in 0..4 {
+            let v = read3(&ws.rn, 12 * a + 3 * k) + acc.fa[k];
+            write3(&mut ws.rn, 12 * a + 3 * k, &v);
+        }
+    }
+    for k in 0..4 {
+        let v = read3(&ws.rn, 12 * bb + 3 * k) + acc.fb[k];
+        write3(&mut ws.rn, 12 * bb + 3 * k, &v);
+    }
+    if !jac {
+        return false;
+    }
+    for (x, y) in ws.xbody[bb].iter_mut().zip(&acc.x_bb) {
+        *x += y;
+    }
+    let Some(a) = a else { return false };
+    for (x, y) in ws.xbody[a].iter_mut().zip(&acc.x_aa) {
+        *x += y;
+    }
+    // the extra blocks complete in place (zeroed again for the next joint)
+    node_block(&acc.cab, &p.dbar_a, &p.d_b, &mut acc.x_ab);
+    let mut cba = [0.0; 16];
+    for n in 0..4 {
+        for m in 0..4 {
+            cba[4 * n + m] = acc.cab[4 * m + n];
+        }
+    }
+    node_block(&cba, &p.dbar_b, &p.d_a, &mut acc.x_ba);
+    true
 }

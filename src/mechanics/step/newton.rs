@@ -28,12 +28,12 @@
 use super::body_terms::project_bodies;
 use super::contact::contact_forces;
 pub(crate) use super::increment::{resolve, solve, update};
+pub(crate) use super::joint_loads::apply_joint;
 use super::joint_loads::{joint_loads, loaded, Acc, Pair};
 pub(crate) use super::work::{Held, Mode, Norms, Work};
 use crate::math::Vec3;
 use crate::mechanics::model::constraint::body_nodes;
 use crate::mechanics::model::constraint::{read3, write3};
-use crate::mechanics::model::kernels::node_block;
 use crate::mechanics::model::runtime::Model;
 use crate::mechanics::model::sink::Sink;
 use crate::mechanics::model::sparse_row::Side;
@@ -220,44 +220,6 @@ pub(crate) fn inertia_and_forces(model: &Model, ws: &mut Work, held: &Held, h: f
         let r = read3(&ws.rn, 12 * b) - f * hh;
         write3(&mut ws.rn, 12 * b, &r);
     }
-}
-
-/// Adds what joint `p` accumulated in `acc` (its loads and, in the multiplier form, its rows)
-/// to the node residual and, if `jac`, to the bodies' diagonal blocks; completes the coupling
-/// blocks `acc.x_ab` (parent rows, child columns) and `acc.x_ba`. True if those are to be
-/// used (a Jacobian pass of a joint with a parent body).
-pub(crate) fn apply_joint(ws: &mut Work, p: &Pair, acc: &mut Acc, jac: bool) -> bool {
-    let (a, bb) = (p.a, p.b);
-    if let Some(a) = a {
-        for k in 0..4 {
-            let v = read3(&ws.rn, 12 * a + 3 * k) + acc.fa[k];
-            write3(&mut ws.rn, 12 * a + 3 * k, &v);
-        }
-    }
-    for k in 0..4 {
-        let v = read3(&ws.rn, 12 * bb + 3 * k) + acc.fb[k];
-        write3(&mut ws.rn, 12 * bb + 3 * k, &v);
-    }
-    if !jac {
-        return false;
-    }
-    for (x, y) in ws.xbody[bb].iter_mut().zip(&acc.x_bb) {
-        *x += y;
-    }
-    let Some(a) = a else { return false };
-    for (x, y) in ws.xbody[a].iter_mut().zip(&acc.x_aa) {
-        *x += y;
-    }
-    // the extra blocks complete in place (zeroed again for the next joint)
-    node_block(&acc.cab, &p.dbar_a, &p.d_b, &mut acc.x_ab);
-    let mut cba = [0.0; 16];
-    for n in 0..4 {
-        for m in 0..4 {
-            cba[4 * n + m] = acc.cab[4 * m + n];
-        }
-    }
-    node_block(&cba, &p.dbar_b, &p.d_a, &mut acc.x_ba);
-    true
 }
 
 #[cfg(test)]

@@ -54,6 +54,7 @@ fn joint(
 pub(crate) fn sample() -> ModelDef {
     ModelDef {
         couplings: Vec::new(),
+        actuators: Vec::new(),
         contact: Default::default(),
         gravity: Vec3::new(0.0, 0.0, -9.81),
         bodies: vec![

@@ -18,7 +18,8 @@
 //!
 //! `J_sw` is the body block of the Newton matrix evaluated with the stage's ends swapped: the
 //! iterate at `qₙ`, the start at `q_{n+1}` with rate `−v_{n+1}` (so `a = Δq − h vₙ` and the node
-//! residual are unchanged), the turn angles swapped and every damper (joint and stop) negated.
+//! residual are unchanged), the turn angles swapped and every damper (joint, stop, a joint
+//! actuator's rate term) negated.
 //! Each load of the step is a function of `q̄` (symmetric in the ends), a discrete gradient
 //! (symmetric in its ends) or a damper odd in the increment; swapped and negated, each is the
 //! same function of `(qₙ, q_{n+1})` as before, so its derivative in the iterate is its derivative
@@ -279,8 +280,22 @@ fn joint_rows(model: &Model, ws: &Work, xi: &[f64], out: &mut [f64]) {
 
 /// The half-width of the central difference of input `i` at `u`: 1 (the residual is affine
 /// in `u`, so any width is exact but for round-off), narrowed to stay inside an actuator's
-/// effort limit; 0 when the input is at or beyond its limit (the clamped force does not move).
+/// effort limit (a joint actuator's control: inside its control range); 0 when the input is at
+/// or beyond its limit (the clamped force does not move).
 fn step_for(model: &Model, i: usize, u: f64) -> f64 {
+    let act = model
+        .joints
+        .iter()
+        .flat_map(|jt| &jt.acts)
+        .find(|a| a.input == i);
+    if let Some(a) = act {
+        let room = (u - a.ctrl[0]).min(a.ctrl[1] - u);
+        return if room <= 0.0 {
+            0.0
+        } else {
+            (0.5 * room).min(1.0)
+        };
+    }
     let effort = model
         .joints
         .iter()

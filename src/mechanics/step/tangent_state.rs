@@ -17,7 +17,8 @@ pub struct Tangent {
     pub(crate) du: Vec<f64>,
     /// `xi`, `dv` at the start of the step in progress.
     start: (Vec<f64>, Vec<f64>),
-    /// The model with its stop dampers negated, when it has any (the swapped evaluation).
+    /// The model with its stop dampers and its actuators' rate terms negated, when it has any
+    /// (the swapped evaluation).
     pub(crate) mirror: Option<Box<Model>>,
 }
 
@@ -33,15 +34,17 @@ impl Tangent {
         assert_eq!(xi.len(), 6 * nb * cols, "tangent: xi length");
         assert_eq!(dv.len(), 12 * nb * cols, "tangent: dv length");
         assert_eq!(du.len(), model.inputs.len() * cols, "tangent: du length");
-        let damped_stops = model
-            .joints
-            .iter()
-            .any(|j| j.stops.is_some_and(|s| s.damping != 0.0));
-        let mirror = damped_stops.then(|| {
+        let damped = model.joints.iter().any(|j| {
+            j.stops.is_some_and(|s| s.damping != 0.0) || j.acts.iter().any(|a| a.bias[1] != 0.0)
+        });
+        let mirror = damped.then(|| {
             let mut m = model.clone();
             for j in &mut m.joints {
                 if let Some(s) = &mut j.stops {
                     s.damping = -s.damping;
+                }
+                for a in &mut j.acts {
+                    a.bias[1] = -a.bias[1];
                 }
             }
             Box::new(m)

@@ -11,8 +11,9 @@
 //! ```
 //!
 //! (`Δs = Δu·w̄ + ū·Δw` exactly, from the stored increments `q − qₙ`). The generalised force `f`
-//! on the coordinate (spring `−k t̄`, damper `−c Δt/h`, with `t̄ = t₀ + Δt/2`, and a rotor of
-//! inertia `a` in joint space, `−(2a/h²)(Δt − h ω₀)`) acts on the coordinates as
+//! on the coordinate (spring `−k t̄`, damper `−c Δt/h`, with `t̄ = t₀ + Δt/2`, a rotor of
+//! inertia `a` in joint space, `−(2a/h²)(Δt − h ω₀)`, and actuators `τ(t̄, Δt/h)` of
+//! `model::joint_actuator`) acts on the coordinates as
 //!
 //! ```text
 //! F = f β (c̄ ∇s(q̄) − s̄ ∇c(q̄)),   s̄ = s₀ + Δs/2,  c̄ = c₀ + Δc/2
@@ -31,6 +32,7 @@
 use crate::math::{skew, Mat3, Vec3};
 use crate::mechanics::model::constraint::DotRow;
 use crate::mechanics::model::constraint::LinVec;
+use crate::mechanics::model::joint_actuator::{stage_sum, JointActuator};
 use crate::mechanics::model::joint_friction::JointFriction;
 use crate::mechanics::model::stops::Stops;
 
@@ -71,7 +73,8 @@ pub(crate) struct TurnStep {
 /// N·m/rad, about angle 0), damper (`c_d`, N·m·s/rad), stop (`model::stops`) and rotor
 /// (`[a, ω₀]`: armature, kg·m², and the rotor's rate at the stage start, rad/s; the load
 /// `−(2a/h²)(Δt − h ω₀)`, module docs) and friction (`model::joint_friction` with its bristle's
-/// deflection at the stage start) load for the start angle `t0` (rad) and stage size `h` (s).
+/// deflection at the stage start) and actuator (`model::joint_actuator`, with the input vector)
+/// load for the start angle `t0` (rad) and stage size `h` (s).
 #[must_use]
 #[allow(clippy::too_many_arguments)]
 pub(crate) fn turn_step(
@@ -83,6 +86,7 @@ pub(crate) fn turn_step(
     stops: Option<&Stops>,
     [a, w0]: [f64; 2],
     fric: Option<(&JointFriction, f64)>,
+    (acts, inputs): (&[JointActuator], &[f64]),
     h: f64,
 ) -> TurnStep {
     let x = c0 * ds - s0 * dc;
@@ -90,7 +94,7 @@ pub(crate) fn turn_step(
     let y = c0 * c1 + s0 * s1;
     let (b, bx, by) = beta(x, y);
     let dt = b * x;
-    if k == 0.0 && c_d == 0.0 && stops.is_none() && a == 0.0 && fric.is_none() {
+    if k == 0.0 && c_d == 0.0 && stops.is_none() && a == 0.0 && fric.is_none() && acts.is_empty() {
         return TurnStep {
             dt,
             ..TurnStep::default()
@@ -102,13 +106,14 @@ pub(crate) fn turn_step(
         let st = fr.step(s0, dt, h);
         (st.force, st.dforce)
     });
-    let f = -k * (t0 + 0.5 * dt) - c_d * dt / h + f_stop - rotor * (dt - h * w0) + f_fric;
+    let (f_act, df_act) = stage_sum(acts, inputs, t0, dt, h);
+    let f = -k * (t0 + 0.5 * dt) - c_d * dt / h + f_stop - rotor * (dt - h * w0) + f_fric + f_act;
     let (sb, cb) = (s0 + 0.5 * ds, c0 + 0.5 * dc);
     // ∂X/∂(s₁, c₁) = (c₀, −s₀), ∂Y/∂(s₁, c₁) = (s₀, c₀)
     let r = x * x + y * y;
     let ddt = [(y * c0 - x * s0) / r, (-y * s0 - x * c0) / r];
     let db = [bx * c0 + by * s0, -bx * s0 + by * c0];
-    let df = -(0.5 * k + c_d / h + rotor) + df_stop + df_fric;
+    let df = -(0.5 * k + c_d / h + rotor) + df_stop + df_fric + df_act;
     let fb = f * b;
     let mut jac = [0.0; 4];
     for v in 0..2 {
@@ -264,7 +269,18 @@ mod tests {
             let (ds, dc) = (t1.sin() - s0, t1.cos() - c0);
             let fr = JointFriction { limit: 0.4 };
             let fric = Some((&fr, 3e-5));
-            let st = turn_step([s0, c0], [ds, dc], t0, k, c, None, [ar, w0], fric, h);
+            let st = turn_step(
+                [s0, c0],
+                [ds, dc],
+                t0,
+                k,
+                c,
+                None,
+                [ar, w0],
+                fric,
+                (&[], &[]),
+                h,
+            );
             assert!((st.dt - dt_true).abs() <= 1e-15 * (1.0 + t0.abs()) + 1e-12 * dt_true.abs());
             // F·Δq = fs Δs + fc Δc = −½k(t₁² − t₀²) − c Δt²/h − ½a(ω₁² − ω₀²)
             let w = st.fs * ds + st.fc * dc;
@@ -293,6 +309,7 @@ mod tests {
                     None,
                     [ar, w0],
                     fric,
+                    (&[], &[]),
                     h,
                 );
                 let m = turn_step(
@@ -304,6 +321,7 @@ mod tests {
                     None,
                     [ar, w0],
                     fric,
+                    (&[], &[]),
                     h,
                 );
                 let fs = (p.fs - m.fs) / (2.0 * e);
