@@ -237,8 +237,8 @@ pub fn run(args: &LinearizeArgs) -> Result<(), CliError> {
         Some(cl) => {
             let n = cl.indep.len();
             eprintln!(
-                "closed loops: x holds {n} independent coordinate(s) {} (the other tree joints \
-                 follow them around the loops{})",
+                "closed loops or couplings: x holds {n} independent coordinate(s) {} (the other \
+                 tree joints follow them around the loops and couplings{})",
                 x_names[..n].join(", "),
                 if args.coordinates.is_some() {
                     ""

@@ -4,7 +4,8 @@
 //!
 //! ```text
 //! closure    Φ(q) = 0:  the closing joints' rows g = u·w − c (`constraint::DotRow`) on the nodes
-//!            φ = o + R c,  dᵢ = R eᵢ  of the bodies placed by the tree's kinematics at q
+//!            φ = o + R c,  dᵢ = R eᵢ  of the bodies placed by the tree's kinematics at q, and
+//!            the joint couplings q_b − r q_a − o (`[[coupling]]`, linear in the coordinates)
 //! rates      Φ̇ = u̇·w + u·ẇ = G(q) ν             φ̇ = v_G,  ḋᵢ = ω × dᵢ
 //! accel.     Φ̈ = ü·w + 2 u̇·ẇ + u·ẅ = G ν̇ + Ġ ν   φ̈ = a_G,  d̈ᵢ = α × dᵢ + ω × (ω × dᵢ)
 //!            (G's column k: Φ̇ at ν = e_k; the motion's velocities and accelerations give Φ̇,
@@ -41,12 +42,23 @@ pub enum Independent {
     Coords(Vec<usize>),
 }
 
-/// One row of a loop-closing joint: parent body (`None`: the world), child body, the row.
+/// One row of the closure: a loop-closing joint's row on its parent body (`None`: the world)
+/// and child body, or a joint coupling `q_b − r q_a − o` on two tree coordinates.
 #[derive(Clone, Debug)]
-struct ClosingRow {
-    parent: Option<usize>,
-    child: usize,
-    row: DotRow,
+enum ClosingRow {
+    /// A row of a loop-closing joint.
+    Joint {
+        parent: Option<usize>,
+        child: usize,
+        row: DotRow,
+    },
+    /// A coupling: tree coordinates `a`, `b`, `ratio`, `offset`.
+    Coupling {
+        a: usize,
+        b: usize,
+        ratio: f64,
+        offset: f64,
+    },
 }
 
 /// The loop closure of a model at an operating point: the independent rows and the split of
@@ -180,23 +192,34 @@ fn pivoted(vs: &[DVector<f64>], order: &[usize], strict: f64, need: usize) -> Ve
 }
 
 impl Closure {
-    /// Every row of the loop-closing joints of `model`, or `None` for a tree.
-    fn all_rows(model: &Model) -> Option<Vec<ClosingRow>> {
+    /// Every row of the loop-closing joints and couplings of `model`, or `None` for a tree
+    /// without couplings.
+    fn all_rows(td: &TreeDynamics, model: &Model) -> Option<Vec<ClosingRow>> {
         let def = model.def();
-        let rows: Vec<ClosingRow> = def
+        let mut rows: Vec<ClosingRow> = def
             .joints
             .iter()
             .enumerate()
             .filter(|(_, jd)| jd.loop_closing)
             .flat_map(|(j, _)| {
                 let g = &model.joints[j].geom;
-                g.rows.iter().map(|row| ClosingRow {
+                g.rows.iter().map(|row| ClosingRow::Joint {
                     parent: g.parent,
                     child: g.child,
                     row: *row,
                 })
             })
             .collect();
+        for cd in &def.couplings {
+            if let (Some(a), Some(b)) = (td.joint_at(cd.a), td.joint_at(cd.b)) {
+                rows.push(ClosingRow::Coupling {
+                    a,
+                    b,
+                    ratio: cd.ratio,
+                    offset: cd.offset,
+                });
+            }
+        }
         (!rows.is_empty()).then_some(rows)
     }
 
@@ -212,11 +235,12 @@ impl Closure {
         q: &[f64],
         pick: &Independent,
     ) -> Result<Option<Self>, String> {
-        let Some(rows) = Self::all_rows(model) else {
+        let Some(rows) = Self::all_rows(td, model) else {
             return match pick {
                 Independent::Joints(_) => Err(
-                    "the model has no closed loops: its state is every tree joint's coordinate \
-                     and rate, so there is nothing to pick (--coordinates is for closed loops)"
+                    "the model has no closed loops or couplings: its state is every tree joint's \
+                     coordinate and rate, so there is nothing to pick (--coordinates is for closed \
+                     loops)"
                         .into(),
                 ),
                 _ => Ok(None),
@@ -292,19 +316,39 @@ impl Closure {
         self.rows.len()
     }
 
-    /// The rows' values `Φ`, rates `Φ̇` and accelerations `Φ̈` at `m` (a motion with
-    /// accelerations; module formulas).
-    fn values<T: Real>(&self, td: &TreeDynamics, m: &Motion<T>) -> (Vec<T>, Vec<T>, Vec<T>) {
+    /// The rows' values `Φ`, rates `Φ̇` and accelerations `Φ̈` at `m`, the motion at `(q, ν, ν̇)`
+    /// (module formulas; a coupling's are `q_b − r q_a − o`, `ν_b − r ν_a`, `ν̇_b − r ν̇_a`).
+    fn values<T: Real>(
+        &self,
+        td: &TreeDynamics,
+        m: &Motion<T>,
+        (q, nu, nud): (&[T], &[T], &[T]),
+    ) -> (Vec<T>, Vec<T>, Vec<T>) {
         let jets = jets(td, m);
         let w0 = world::<T>();
         let (mut g, mut gd, mut gdd) = (Vec::new(), Vec::new(), Vec::new());
         for cr in &self.rows {
-            let ja = cr.parent.map_or(&w0, |p| &jets[p]);
-            let jb = &jets[cr.child];
-            let (u, w) = (lin(&cr.row.u, ja, jb), lin(&cr.row.w, ja, jb));
-            g.push(u.x.dot(&w.x) - c::<T>(cr.row.offset));
-            gd.push(u.v.dot(&w.x) + u.x.dot(&w.v));
-            gdd.push(u.a.dot(&w.x) + u.v.dot(&w.v) * c::<T>(2.0) + u.x.dot(&w.a));
+            match cr {
+                ClosingRow::Joint { parent, child, row } => {
+                    let ja = parent.map_or(&w0, |p| &jets[p]);
+                    let jb = &jets[*child];
+                    let (u, w) = (lin(&row.u, ja, jb), lin(&row.w, ja, jb));
+                    g.push(u.x.dot(&w.x) - c::<T>(row.offset));
+                    gd.push(u.v.dot(&w.x) + u.x.dot(&w.v));
+                    gdd.push(u.a.dot(&w.x) + u.v.dot(&w.v) * c::<T>(2.0) + u.x.dot(&w.a));
+                }
+                ClosingRow::Coupling {
+                    a,
+                    b,
+                    ratio,
+                    offset,
+                } => {
+                    let r = c::<T>(*ratio);
+                    g.push(q[*b] - r * q[*a] - c::<T>(*offset));
+                    gd.push(nu[*b] - r * nu[*a]);
+                    gdd.push(nud[*b] - r * nud[*a]);
+                }
+            }
         }
         (g, gd, gdd)
     }
@@ -312,12 +356,13 @@ impl Closure {
     /// `Φ(q)` (r).
     pub fn phi<T: Real>(&self, td: &TreeDynamics, q: &[T]) -> Vec<T> {
         let z = vec![T::zero(); td.n()];
-        self.values(td, &td.motion(q, &z, Some(&z))).0
+        self.values(td, &td.motion(q, &z, Some(&z)), (q, &z, &z)).0
     }
 
     /// `Φ̈(q, ν, ν̇) = G ν̇ + Ġ ν` (r).
     pub fn phi_ddot<T: Real>(&self, td: &TreeDynamics, q: &[T], nu: &[T], nud: &[T]) -> Vec<T> {
-        self.values(td, &td.motion(q, nu, Some(nud))).2
+        self.values(td, &td.motion(q, nu, Some(nud)), (q, nu, nud))
+            .2
     }
 
     /// `G(q) = ∂Φ̇/∂ν` (r × n).
@@ -328,7 +373,7 @@ impl Closure {
         for k in 0..n {
             let mut e = z.clone();
             e[k] = T::one();
-            let (_, gd, _) = self.values(td, &td.motion(q, &e, Some(&z)));
+            let (_, gd, _) = self.values(td, &td.motion(q, &e, Some(&z)), (q, &e, &z));
             for (i, v) in gd.into_iter().enumerate() {
                 g[(i, k)] = v;
             }

@@ -185,7 +185,7 @@ impl std::fmt::Display for Unsupported {
             Self::Closure(why) => write!(f, "{why}"),
             Self::Contact => write!(f, "the model has collision shapes; linear models with contact are not available yet (build it without contacts, e.g. `--no-contacts` or without [[collision]])"),
             Self::Friction(j) => write!(f, "joint '{j}' has Coulomb friction, which has no derivative where the joint sticks; linearise without it (`--set joint.{j}.friction=0`)"),
-            Self::Coupling(j) => write!(f, "joint '{j}' follows another joint through a [[coupling]]; linear models of coupled joints are not available yet"),
+            Self::Coupling(j) => write!(f, "joint '{j}' follows another joint through a [[coupling]]; coupled joints are linearised by `triad linearize` only (in independent coordinates), not here"),
         }
     }
 }
@@ -199,6 +199,9 @@ impl std::fmt::Display for Unsupported {
 pub fn supported(def: &ModelDef) -> Result<(), Unsupported> {
     if let Some(j) = def.joints.iter().find(|j| j.loop_closing) {
         return Err(Unsupported::Loop(j.name.clone()));
+    }
+    if let Some(c) = def.couplings.first() {
+        return Err(Unsupported::Coupling(def.joints[c.b].name.clone()));
     }
     linearizable(def)
 }
@@ -215,9 +218,6 @@ pub fn linearizable(def: &ModelDef) -> Result<(), Unsupported> {
     }
     if let Some(j) = def.joints.iter().find(|j| j.friction > 0.0) {
         return Err(Unsupported::Friction(j.name.clone()));
-    }
-    if let Some(c) = def.couplings.first() {
-        return Err(Unsupported::Coupling(def.joints[c.b].name.clone()));
     }
     Ok(())
 }

@@ -42,7 +42,7 @@ pub use super::tangent_state::Tangent;
 use crate::math::Vec3;
 use crate::mechanics::linalg::tree::NMAX;
 use crate::mechanics::model::constraint::{body_nodes, read3, LinVec};
-use crate::mechanics::model::runtime::Model;
+use crate::mechanics::model::runtime::{DofRt, Model};
 
 impl Tangent {
     /// Carries the columns through the stage of size `h` that converged in `ws` (start `ws.qn`,
@@ -69,6 +69,9 @@ impl Tangent {
             for k in 0..jt.rows.len() {
                 wt.mu[jt.row0 + k] += mu_entry(model, &wt, j, k);
             }
+        }
+        for (c, cp) in model.couplings.iter().enumerate() {
+            wt.mu[cp.row] += coupling_entry(model, &wt, c);
         }
         evaluate(model, &mut wt, held, h, Mode::Full);
         if !solve(model, &mut wt) {
@@ -276,6 +279,60 @@ fn joint_rows(model: &Model, ws: &Work, xi: &[f64], out: &mut [f64]) {
                 + lu.eval(&d0a, &d0b).dot(&dw);
         }
     }
+    // a coupling's row g = q_b(q_{n+1}) − r q_a(q_{n+1}) − o does not depend on the stage's
+    // start (its start angle and increment cancel): its right-hand side is the coupling's rate
+    // along the column at the end, less that at the start (0 for a column tangent to it)
+    for cp in &model.couplings {
+        let mut v = 0.0;
+        for (j, w) in [(cp.b, 1.0), (cp.a, -cp.ratio)] {
+            let jt = &model.joints[j];
+            let (a, b) = (jt.parent, Some(jt.child));
+            let ((d0a, _), (d0b, _)) = (tangents(a), tangents(b));
+            let end = |b: Option<usize>| -> [Vec3; 4] {
+                let Some(b) = b else { return zero };
+                let (n1, th) = (body_nodes(&ws.q, b), read3(xi, 6 * b + 3));
+                [
+                    read3(xi, 6 * b),
+                    th.cross(&n1[1]),
+                    th.cross(&n1[2]),
+                    th.cross(&n1[3]),
+                ]
+            };
+            let (d1a, d1b) = (end(a), end(b));
+            let rate = |qa: &[Vec3; 4], qb: &[Vec3; 4], da: &[Vec3; 4], db: &[Vec3; 4]| {
+                coordinate_rate(&jt.dofs[0], qa, qb, da, db)
+            };
+            v += w
+                * (rate(&of(&ws.q, a), &of(&ws.q, b), &d1a, &d1b)
+                    - rate(&of(&ws.qn, a), &of(&ws.qn, b), &d0a, &d0b));
+        }
+        out[cp.row] = v;
+    }
+}
+
+/// The rate of a joint's coordinate at nodes `qa`, `qb` along node perturbations `da`, `db`:
+/// a turn `(c ∇s − s ∇c)·δq/(s² + c²)`, a slide `∇s·δq`.
+fn coordinate_rate(
+    dof: &DofRt,
+    qa: &[Vec3; 4],
+    qb: &[Vec3; 4],
+    da: &[Vec3; 4],
+    db: &[Vec3; 4],
+) -> f64 {
+    let along = |row: &crate::mechanics::model::constraint::DotRow| {
+        let mut g = [Vec3::zeros(); 8];
+        row.gradient(qa, qb, &mut g);
+        (0..4)
+            .map(|k| g[k].dot(&da[k]) + g[4 + k].dot(&db[k]))
+            .sum::<f64>()
+    };
+    match dof {
+        DofRt::Slide(row) => along(row),
+        DofRt::Turn(tr) => {
+            let (s, c) = (tr.sin.eval(qa, qb), tr.cos.eval(qa, qb));
+            (c * along(&tr.sin) - s * along(&tr.cos)) / (s * s + c * c)
+        }
+    }
 }
 
 /// The half-width of the central difference of input `i` at `u`: 1 (the residual is affine
@@ -334,6 +391,15 @@ fn mu_entry(model: &Model, ws: &Work, j: usize, k: usize) -> f64 {
     }
 }
 
+/// The solution entry of coupling `c`'s multiplier (after a solve; always in the border).
+fn coupling_entry(model: &Model, ws: &Work, c: usize) -> f64 {
+    if model.dense {
+        ws.drhs[6 * model.bodies.len() + model.couplings[c].row]
+    } else {
+        ws.border.lrow[model.joints.len() + c].map_or(0.0, |l| ws.border.rc[l])
+    }
+}
+
 /// Sets the right-hand side to `−y` (the body rows, then the joint rows in `row0` order).
 fn set_rhs(model: &Model, ws: &mut Work, y: &[f64]) {
     let nb = model.bodies.len();
@@ -355,6 +421,12 @@ fn set_rhs(model: &Model, ws: &mut Work, y: &[f64]) {
                 Some(l) => ws.border.rc[l + k] = v,
                 None => ws.blocks[jt.child].r[6 + k] = v,
             }
+        }
+    }
+    let nj = model.joints.len();
+    for (c, cp) in model.couplings.iter().enumerate() {
+        if let Some(l) = ws.border.lrow[nj + c] {
+            ws.border.rc[l] = -y[6 * nb + cp.row];
         }
     }
 }
