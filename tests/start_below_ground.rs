@@ -144,6 +144,7 @@ const ON_GROUND: ImportOptions = ImportOptions {
     keep_fixed: false,
     no_limits: false,
     no_friction: false,
+    no_mimic: false,
     contacts: true,
     on_ground: true,
 };

@@ -26,6 +26,7 @@ const CONTACTS: ImportOptions = ImportOptions {
     keep_fixed: false,
     no_limits: false,
     no_friction: false,
+    no_mimic: false,
     contacts: true,
     on_ground: false,
 };

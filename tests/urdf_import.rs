@@ -128,11 +128,13 @@ fn merged_fixed_links_move_like_kept_ones() {
     // by which the two (equal) models differ
     let merged = joint_trajectory(&ImportOptions {
         no_friction: true,
+        no_mimic: true,
         ..ImportOptions::default()
     });
     let kept = joint_trajectory(&ImportOptions {
         keep_fixed: true,
         no_friction: true,
+        no_mimic: true,
         ..ImportOptions::default()
     });
     let d = merged

@@ -33,6 +33,7 @@ const KEEP: ImportOptions = ImportOptions {
     keep_fixed: true,
     no_limits: false,
     no_friction: false,
+    no_mimic: false,
     contacts: false,
     on_ground: false,
 };

@@ -31,6 +31,10 @@ pub struct ImportArgs {
     /// `friction`: the joint sticks below it and slides at it).
     #[arg(long)]
     pub no_friction: bool,
+    /// Leave <mimic> joints independent, each with its own input (by default a <mimic> is a
+    /// [[coupling]]: the joint follows the one it names and has no input of its own).
+    #[arg(long)]
+    pub no_mimic: bool,
     /// Make each link's <collision> spheres, boxes and cylinders collision shapes that touch
     /// the ground (meshes are left out with a note), and add a ground plane at height 0.
     #[arg(long)]
@@ -65,6 +69,7 @@ impl ImportArgs {
             keep_fixed: self.keep_fixed,
             no_limits: self.no_limits,
             no_friction: self.no_friction,
+            no_mimic: self.no_mimic,
             contacts: self.contacts,
             on_ground: self.on_ground,
         }
@@ -99,6 +104,7 @@ impl ImportArgs {
             (self.keep_fixed, "--keep-fixed"),
             (self.no_limits, "--no-limits"),
             (self.no_friction, "--no-friction"),
+            (self.no_mimic, "--no-mimic"),
             (self.contacts, "--contacts"),
             (self.on_ground, "--on-ground"),
         ]

@@ -419,7 +419,16 @@ pub(crate) fn spec(
             });
         }
     }
-    mimics(robot, &joint_ids, &mut spec, &mut out.notes);
+    if opts.no_mimic {
+        for j in robot.joints.iter().filter(|j| j.mimic.is_some()) {
+            out.notes.push(format!(
+                "joint '{}' mimics another: imported as an independent joint (--no-mimic)",
+                j.name
+            ));
+        }
+    } else {
+        mimics(robot, &joint_ids, &mut spec, &mut out.notes);
+    }
     // (kept links welded to the world are bodies, but they do not move either)
     let moving = host.iter().flatten().any(|p| p.cluster.is_some());
     if !moving && problems.len() == before {

@@ -23,6 +23,8 @@ pub struct ImportOptions {
     pub no_limits: bool,
     /// Leave out `<dynamics friction>` (by default the joint's Coulomb `friction`).
     pub no_friction: bool,
+    /// Leave `<mimic>` joints independent (by default each is a `[[coupling]]`).
+    pub no_mimic: bool,
     /// Turn the links' `<collision>` spheres, boxes and cylinders into collision shapes
     /// (`[[collision]]`) and add a ground plane (`[ground]`, the defaults, height 0).
     pub contacts: bool,

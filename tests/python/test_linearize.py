@@ -135,7 +135,7 @@ def _setup(triad_bin, tmp_path, name, relative, floating):
     urdf = ref.robot_urdf(relative)
     model = ref.load_model(urdf, floating)
     spec = tmp_path / f"{name}.toml"
-    _triad(triad_bin, "import", str(urdf), "-o", str(spec), "--no-limits", "--no-friction",
+    _triad(triad_bin, "import", str(urdf), "-o", str(spec), "--no-limits", "--no-friction", "--no-mimic",
            *(["--floating-base"] if floating else []))
     text = spec.read_text()
     names = ref.urdf_names(text)["joint"]  # triad joint name -> URDF joint name
@@ -198,7 +198,7 @@ def test_fixed_base_against_pinocchio(triad_bin, tmp_path, name, record_property
         q, v = ref.pinocchio_state(model, joints)
         tau = _random_torque(model, q, rng)
         out = tmp_path / f"{name}_{seed}.npz"
-        _triad(triad_bin, "linearize", str(urdf), "--no-limits", "--no-friction",
+        _triad(triad_bin, "linearize", str(urdf), "--no-limits", "--no-friction", "--no-mimic",
                *_state_args(model, names, joints, tau), "-o", str(out))
         lin = Linearized(out)
         iq, iv, iu = _joint_maps(model, names, lin)

@@ -103,7 +103,7 @@ class Robot:
         self.model = ref.load_model(self.urdf, self.floating)
         spec = tmp_path / f"{self.name}.toml"
         # Pinocchio's ABA knows no Coulomb joint friction: triad leaves the URDF's out too
-        options = (["--floating-base"] if self.floating else []) + ["--no-limits", "--no-friction"]
+        options = (["--floating-base"] if self.floating else []) + ["--no-limits", "--no-friction", "--no-mimic"]
         _run_triad(triad_bin, "import", str(self.urdf), "-o", str(spec), *options)
         self.spec = spec.read_text()
         self.names = ref.urdf_names(self.spec)
@@ -307,7 +307,7 @@ def test_keep_fixed_imports_what_the_default_imports(name, triad_bin, tmp_path):
         out = _run_triad(triad_bin, "check", urdf, "--floating-base", *keep)
         notes[bool(keep)] = out
         spec = tmp_path / f"{name}{'_kept' if keep else ''}.toml"
-        _run_triad(triad_bin, "import", urdf, "--floating-base", "--no-friction", *keep, "-o", str(spec))
+        _run_triad(triad_bin, "import", urdf, "--floating-base", "--no-friction", "--no-mimic", *keep, "-o", str(spec))
         masses[bool(keep)] = ref.total_mass(spec.read_text())
     for keep, out in notes.items():
         assert f"note: link '{link}': its own inertia" in out, f"keep_fixed={keep}:\n{out}"
