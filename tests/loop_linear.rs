@@ -10,77 +10,11 @@ use triad::mechanics::Quantity;
 use triad::mechanics::{Independent, ModelDef, Operating, SolverSettings};
 use triad::sim::Simulation;
 
+mod common;
+use common::trees::COUPLED;
+
 const FOUR_BAR: &str = include_str!("../modelDescription/four_bar/spec.toml");
 const SLIDER_CRANK: &str = include_str!("../modelDescription/slider_crank/spec.toml");
-
-/// Two pendulums, the second following the first at half its angle, and two slides, the second
-/// following the first (`[[coupling]]`s are closure rows of the same kind).
-const COUPLED: &str = r#"
-name = "Coupled"
-gravity = [0.0, -3.0, -9.81]
-[solver]
-max_step = 1e-3
-[[body]]
-name = "p1"
-mass = 1.0
-com = [0.0, 0.0, -0.4]
-inertia = [0.02, 0.02, 0.005]
-[[body]]
-name = "p2"
-mass = 0.6
-com = [0.1, 0.0, -0.3]
-inertia = [0.01, 0.012, 0.004]
-[[body]]
-name = "s1"
-mass = 0.3
-inertia = [0.001, 0.001, 0.001]
-[[body]]
-name = "s2"
-mass = 0.2
-inertia = [0.001, 0.001, 0.001]
-[[joint]]
-name = "j1"
-type = "revolute"
-parent = "world"
-child = "p1"
-axis = [1.0, 0.0, 0.0]
-actuated = true
-initial = { q = 1.0, qd = 2.0 }
-[[joint]]
-name = "j2"
-type = "revolute"
-parent = "world"
-child = "p2"
-origin = { xyz = [0.5, 0.0, 0.0], rpy = [0.0, 0.3, 0.0] }
-axis = [1.0, 0.0, 0.0]
-stiffness = 3.0
-[[joint]]
-name = "k1"
-type = "prismatic"
-parent = "p1"
-child = "s1"
-origin = { xyz = [0.0, 0.0, -0.5] }
-axis = [0.0, 1.0, 0.0]
-actuated = true
-initial = { q = 0.05, qd = -0.2 }
-[[joint]]
-name = "k2"
-type = "prismatic"
-parent = "p2"
-child = "s2"
-origin = { xyz = [0.0, 0.0, -0.4] }
-axis = [0.0, 0.0, 1.0]
-stiffness = 20.0
-[[coupling]]
-a = "j1"
-b = "j2"
-ratio = 0.5
-offset = -0.2
-[[coupling]]
-a = "k1"
-b = "k2"
-ratio = -1.5
-"#;
 
 fn lower(text: &str) -> (ModelDef, SolverSettings) {
     let spec = triad::spec::Spec::from_str(text, triad::spec::Format::Toml, "test.toml")
