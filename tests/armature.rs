@@ -5,21 +5,8 @@
 mod common;
 
 use common::spec_model;
-use common::trees::{ALL_KINDS, FLOATING, ROTOR};
+use common::trees::{with_armature, ALL_KINDS, FLOATING, ROTOR};
 use triad::mechanics::{step, Model, Operating, State};
-
-/// Every joint kind that takes an armature gets one (the spherical joint j5 cannot).
-fn with_armature(text: &str) -> String {
-    let mut out = String::new();
-    for line in text.lines() {
-        out.push_str(line);
-        out.push('\n');
-        if line.starts_with("type = \"") && !line.contains("spherical") && !line.contains("fixed") {
-            out.push_str("armature = 0.35\n");
-        }
-    }
-    out
-}
 
 fn set_inputs(s: &mut State, u: &[f64]) {
     let n = s.inputs().len();

@@ -243,3 +243,16 @@ a = "k1"
 b = "k2"
 ratio = -1.5
 "#;
+
+/// Every joint kind that takes an armature gets one (the spherical joint j5 cannot).
+pub fn with_armature(text: &str) -> String {
+    let mut out = String::new();
+    for line in text.lines() {
+        out.push_str(line);
+        out.push('\n');
+        if line.starts_with("type = \"") && !line.contains("spherical") && !line.contains("fixed") {
+            out.push_str("armature = 0.35\n");
+        }
+    }
+    out
+}

@@ -73,7 +73,7 @@ impl Closure {
         b: &[T],
     ) -> Result<Vec<T>, String> {
         let n = td.n();
-        let k = kkt(&td.mass_matrix_of(q), &self.jacobian(td, q));
+        let k = kkt(&td.bodies_mass_matrix_of(q), &self.jacobian(td, q));
         let rhs = DVector::from_iterator(
             n + self.n_rows(),
             b.iter()

@@ -160,7 +160,7 @@ impl TreeDynamics {
         let n = self.n();
         let nb = self.n_bodies();
         let singular = || "the joint-space mass matrix is singular".to_string();
-        let lu = self.mass_matrix(q).lu();
+        let lu = self.bodies_mass_matrix_of(q).lu();
         let b0 = self.rate_load(q, xq, xv);
         let nu = match loops {
             Some(cl) => DVector::from_vec(cl.project_rates(self, q, &b0)?),

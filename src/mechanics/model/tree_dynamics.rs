@@ -782,6 +782,22 @@ impl TreeDynamics {
     /// [`TreeDynamics::mass_matrix`] in any scalar (dual numbers: its derivative).
     #[must_use]
     pub fn mass_matrix_of<T: Real>(&self, q: &[T]) -> nalgebra::DMatrix<T> {
+        let mut mm = self.bodies_mass_matrix_of(q);
+        for jd in self.joints.iter().flatten() {
+            if jd.armature > 0.0 {
+                for k in jd.at..jd.at + jd.kind.dof() {
+                    mm[(k, k)] += c::<T>(jd.armature);
+                }
+            }
+        }
+        mm
+    }
+
+    /// The bodies' share of the mass matrix (without the rotors' armature): the metric of the
+    /// outputs' M-orthogonal projection of the nodal velocities, whose kinetic energy is the
+    /// bodies' (`minimal`'s read-off).
+    #[must_use]
+    pub fn bodies_mass_matrix_of<T: Real>(&self, q: &[T]) -> nalgebra::DMatrix<T> {
         type S6<T> = nalgebra::SMatrix<T, 6, 6>;
         type V6<T> = nalgebra::SVector<T, 6>;
         let n = self.coords.len();
@@ -828,13 +844,6 @@ impl TreeDynamics {
                         mm[(j, i)] = v;
                     }
                     at = parent;
-                }
-            }
-        }
-        for jd in self.joints.iter().flatten() {
-            if jd.armature > 0.0 {
-                for k in jd.at..jd.at + jd.kind.dof() {
-                    mm[(k, k)] += c::<T>(jd.armature);
                 }
             }
         }

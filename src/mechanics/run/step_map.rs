@@ -34,30 +34,38 @@ pub struct StepMap {
 /// the end ([`Independent::Coords`] of those picked).
 ///
 /// # Errors
-/// Why the model has no minimal coordinates (contact, friction, an armature), or a pick that
+/// Why the model has no minimal coordinates (contact, friction), or a pick that
 /// is not independent here.
 pub fn begin_step_map(
     model: &Model,
     state: &mut State,
     pick: &Independent,
 ) -> Result<Independent, String> {
-    if model.narm > 0 {
-        return Err(
-            "the discrete-time Ad, Bd of models with an armature are not available yet (the \
-             continuous-time A, B include it)"
-                .into(),
-        );
-    }
     let op = Operating::picked(model, state, pick).map_err(|e| e.to_string())?;
     let (n, m) = (op.x().len() / 2, model.inputs.len());
     let nb = model.bodies.len();
     let mut emb = op.dynamics.embed_tangent(&op.q, &op.nu);
-    let end = match &op.loops {
-        Some(cl) => {
-            emb = emb.times(&cl.embed_map(&op.dynamics, &op.q, &op.nu)?);
-            Independent::Coords(cl.indep.clone())
+    // the rotors' rates are their joints' rates: per tree column, the rotor of coordinate k
+    // moves with the rate column of k
+    let nt = op.dynamics.n();
+    let na = model.narm;
+    let mut dw_tree = DMatrix::zeros(na, 2 * nt);
+    for (j, jt) in model.joints.iter().enumerate() {
+        if jt.armature > 0.0 && jt.sph_axes.is_none() {
+            if let Some(k0) = op.dynamics.joint_at(j) {
+                for dk in 0..jt.dofs.len() {
+                    dw_tree[(jt.arm0 + dk, nt + k0 + dk)] = 1.0;
+                }
+            }
         }
-        None => Independent::Auto,
+    }
+    let (end, dw_x) = match &op.loops {
+        Some(cl) => {
+            let map = cl.embed_map(&op.dynamics, &op.q, &op.nu)?;
+            emb = emb.times(&map);
+            (Independent::Coords(cl.indep.clone()), dw_tree * map)
+        }
+        None => (Independent::Auto, dw_tree),
     };
     let cols = 2 * n + m;
     let mut xi = emb.xi;
@@ -68,7 +76,13 @@ pub fn begin_step_map(
     for i in 0..m {
         du[(2 * n + i) * m + i] = 1.0;
     }
-    state.ws.tangent = Some(Box::new(Tangent::new(model, cols, xi, dv, du)));
+    let mut dw = vec![0.0; na * cols];
+    for c in 0..2 * n {
+        for r in 0..na {
+            dw[c * na + r] = dw_x[(r, c)];
+        }
+    }
+    state.ws.tangent = Some(Box::new(Tangent::new(model, cols, (xi, dv), du, dw)));
     Ok(end)
 }
 

@@ -27,6 +27,18 @@
 //! The multipliers of the root are refined first by one solve (the residual is linear in `μ`),
 //! since the reduced iteration does not carry them.
 //!
+//! Rotors (armature `a`, rate `ω` a state of the stage): their load `ρ = a (Δt − h ω₀) D` (`D` the
+//! coordinate's discrete gradient, symmetric in the ends) is an inertia in `Δt`, so the swapped
+//! evaluation (rotors started at `−ω₁`, the same value of `ρ`) takes its `Δt`-share with the
+//! wrong sign; with `ṫ(ξ)` the coordinate's rate along a column at either end,
+//!
+//! ```text
+//! ∂r/∂ω₀ δω = −a h P̄ᵀD δω,   correction −2a ṫₙ(ξ) P̄ᵀD,   δω₁ = (2/h)(ṫ₁(ξ') − ṫₙ(ξ)) − δω₀
+//! ```
+//!
+//! A coupling's row `q_b(q_{n+1}) − r q_a(q_{n+1}) − o` does not depend on the start: its
+//! right-hand side is the coupling's rate along the column at the end less that at the start.
+//!
 //! Cost per stage: two factorisations of the Newton matrix, one of the swapped one's assembly,
 //! `2 nᵤ` residual evaluations and one back-substitution per column, each O(N) on a tree.
 //! Contacts are not covered (`tree_dynamics::linearizable` refuses them before a tangent
@@ -37,11 +49,15 @@
 #![allow(clippy::needless_range_loop)]
 
 use super::error::StepError;
+use super::joint_loads::Pair;
 use super::newton::{evaluate, resolve, solve, stage_rates, Held, Mode, Work};
 pub use super::tangent_state::Tangent;
+use super::turn::{row_increment, turn_load};
 use crate::math::Vec3;
 use crate::mechanics::linalg::tree::NMAX;
+use crate::mechanics::model::constraint::DotRow;
 use crate::mechanics::model::constraint::{body_nodes, read3, LinVec};
+use crate::mechanics::model::kernels::project;
 use crate::mechanics::model::runtime::{DofRt, Model};
 
 impl Tangent {
@@ -96,6 +112,10 @@ impl Tangent {
         }
         sw.ang.copy_from_slice(&ws.ang1);
         sw.ang1.copy_from_slice(&ws.ang);
+        // the rotors start at −ω₁, so that their load −(2a/h²)(Δt − hω₀) keeps its value
+        for (w, w1) in sw.arm.iter_mut().zip(&ws.arm1) {
+            *w = -w1;
+        }
         stage_rates(&mut sw, h);
         let negated: Vec<f64> = held.damping.iter().map(|c| -c).collect();
         let held_sw = Held {
@@ -106,6 +126,8 @@ impl Tangent {
         let mirror = self.mirror.as_deref().unwrap_or(model);
         evaluate(mirror, &mut sw, &held_sw, h, Mode::Full);
         let ru = self.input_columns(model, ws, &wt.mu, held, h);
+        let rotors = rotors(model, ws);
+        let na = model.narm;
         // per column: the right-hand side, one solve, the end's perturbation
         let nr = model.nrows;
         let (mut y, mut ys) = (vec![0.0; 6 * nb + nr], vec![0.0; 6 * nb + nr]);
@@ -145,6 +167,31 @@ impl Tangent {
                     }
                 }
             }
+            // the rotors: ∂r/∂ω₀ δω₀ = −a h P̄ᵀD δω₀, and the swapped evaluation's share of
+            // the rotor load taken with the sign of an inertia (module docs): −2a ṫₙ(ξ) P̄ᵀD
+            let mut rate_n = vec![0.0; rotors.len()];
+            for (r, ro) in rotors.iter().enumerate() {
+                let jt = &model.joints[ro.joint];
+                let (pa, pb) = (jt.parent, Some(jt.child));
+                let at = |x: &[f64], b: Option<usize>| {
+                    b.map_or([Vec3::zeros(); 4], |b| body_nodes(x, b))
+                };
+                rate_n[r] = coordinate_rate(
+                    &jt.dofs[ro.dof],
+                    &at(&ws.qn, pa),
+                    &at(&ws.qn, pb),
+                    &perturbation(&ws.qn, xi, pa),
+                    &perturbation(&ws.qn, xi, pb),
+                );
+                let w0 = self.dw[c * na + ro.index];
+                let k = -jt.armature * (h * w0 + 2.0 * rate_n[r]);
+                for e in 0..6 {
+                    y[6 * jt.child + e] += k * ro.col_b[e];
+                    if let Some(a) = pa {
+                        y[6 * a + e] += k * ro.col_a[e];
+                    }
+                }
+            }
             // J_z Y = −y for X = ξ + Y
             set_rhs(model, &mut wt, &y);
             resolve(model, &mut wt);
@@ -175,6 +222,23 @@ impl Tangent {
                 for k in 0..6 {
                     xic[6 * b + k] += yb[k];
                 }
+            }
+            // ω₁ = 2Δt/h − ω₀: δω₁ = (2/h)(ṫ₁(ξ') − ṫₙ(ξ)) − δω₀
+            for (r, ro) in rotors.iter().enumerate() {
+                let jt = &model.joints[ro.joint];
+                let (pa, pb) = (jt.parent, Some(jt.child));
+                let at = |x: &[f64], b: Option<usize>| {
+                    b.map_or([Vec3::zeros(); 4], |b| body_nodes(x, b))
+                };
+                let rate_1 = coordinate_rate(
+                    &jt.dofs[ro.dof],
+                    &at(&ws.q, pa),
+                    &at(&ws.q, pb),
+                    &perturbation(&ws.q, xic, pa),
+                    &perturbation(&ws.q, xic, pb),
+                );
+                let w = &mut self.dw[c * na + ro.index];
+                *w = two_over_h * (rate_1 - rate_n[r]) - *w;
             }
         }
         Ok(())
@@ -308,6 +372,79 @@ fn joint_rows(model: &Model, ws: &Work, xi: &[f64], out: &mut [f64]) {
         }
         out[cp.row] = v;
     }
+}
+
+/// A rotor (a coordinate of a joint with an armature) at the root of a stage: its joint and
+/// coordinate, its index among the rotors, and the projected discrete gradient `P̄ᵀD` of its
+/// coordinate on the joint's child and parent (`D = β (c̄ ∇s(q̄) − s̄ ∇c(q̄))` of a turn,
+/// `∇s(q̄)` of a slide), the direction of its load.
+struct Rotor {
+    joint: usize,
+    dof: usize,
+    index: usize,
+    col_b: [f64; 6],
+    col_a: [f64; 6],
+}
+
+/// The rotors of `model` at the root `ws` (the midpoint `ws.qbar`, the increments `ws.dq`).
+fn rotors(model: &Model, ws: &Work) -> Vec<Rotor> {
+    let mut out = Vec::with_capacity(model.narm);
+    for (j, jt) in model.joints.iter().enumerate() {
+        if jt.armature <= 0.0 || jt.sph_axes.is_some() {
+            continue;
+        }
+        let p = Pair::new(ws, jt.parent, jt.child);
+        let zero = [Vec3::zeros(); 4];
+        let dqa = jt.parent.map_or(zero, |a| body_nodes(&ws.dq, a));
+        let dqb = body_nodes(&ws.dq, jt.child);
+        let qa_n = jt.parent.map_or(zero, |a| body_nodes(&ws.qn, a));
+        let qb_n = body_nodes(&ws.qn, jt.child);
+        for (dk, dof) in jt.dofs.iter().enumerate() {
+            let grad = |row: &DotRow| {
+                let mut g = [Vec3::zeros(); 8];
+                row.gradient(&p.qa_bar, &p.qb_bar, &mut g);
+                (project(&g[4..], &p.dbar_b), project(&g[..4], &p.dbar_a))
+            };
+            let (col_b, col_a) = match dof {
+                DofRt::Slide(row) => grad(row),
+                DofRt::Turn(tr) => {
+                    let (s0, c0) = (tr.sin.eval(&qa_n, &qb_n), tr.cos.eval(&qa_n, &qb_n));
+                    let ds = row_increment(&tr.sin, &p.qa_bar, &p.qb_bar, &dqa, &dqb);
+                    let dc = row_increment(&tr.cos, &p.qa_bar, &p.qb_bar, &dqa, &dqb);
+                    let u = turn_load([s0, c0], [ds, dc], 1.0).unit;
+                    let ((sb, sa), (cb, ca)) = (grad(&tr.sin), grad(&tr.cos));
+                    (
+                        std::array::from_fn(|e| u[0] * sb[e] + u[1] * cb[e]),
+                        std::array::from_fn(|e| u[0] * sa[e] + u[1] * ca[e]),
+                    )
+                }
+            };
+            out.push(Rotor {
+                joint: j,
+                dof: dk,
+                index: jt.arm0 + dk,
+                col_b,
+                col_a,
+            });
+        }
+    }
+    out
+}
+
+/// The node perturbations `[δφ, δθ × dᵢ]` of body `b` (zeros for the world) at nodes `q` for
+/// the twist column `xi`.
+fn perturbation(q: &[f64], xi: &[f64], b: Option<usize>) -> [Vec3; 4] {
+    let Some(b) = b else {
+        return [Vec3::zeros(); 4];
+    };
+    let n = body_nodes(q, b);
+    let th = read3(xi, 6 * b + 3);
+    [
+        read3(xi, 6 * b),
+        th.cross(&n[1]),
+        th.cross(&n[2]),
+        th.cross(&n[3]),
+    ]
 }
 
 /// The rate of a joint's coordinate at nodes `qa`, `qb` along node perturbations `da`, `db`:

@@ -15,25 +15,34 @@ pub struct Tangent {
     pub(crate) dv: Vec<f64>,
     /// Input perturbations, one per model input, per column.
     pub(crate) du: Vec<f64>,
-    /// `xi`, `dv` at the start of the step in progress.
-    start: (Vec<f64>, Vec<f64>),
+    /// Rotor rate perturbations, one per rotor (`Model::narm`), per column, rad/s or m/s.
+    pub(crate) dw: Vec<f64>,
+    /// `xi`, `dv`, `dw` at the start of the step in progress.
+    start: (Vec<f64>, Vec<f64>, Vec<f64>),
     /// The model with its stop dampers and its actuators' rate terms negated, when it has any
     /// (the swapped evaluation).
     pub(crate) mirror: Option<Box<Model>>,
 }
 
 impl Tangent {
-    /// Columns `xi` (6 per body each), `dv` (12 per body each) and `du` (one per model input
-    /// each), column-major, for `model`.
+    /// Columns `xi` (6 per body each), `dv` (12 per body each), `du` (one per model input each)
+    /// and `dw` (one per rotor each), column-major, for `model`.
     ///
     /// # Panics
     /// When the lengths do not match `cols` columns of `model`.
     #[must_use]
-    pub fn new(model: &Model, cols: usize, xi: Vec<f64>, dv: Vec<f64>, du: Vec<f64>) -> Self {
+    pub fn new(
+        model: &Model,
+        cols: usize,
+        (xi, dv): (Vec<f64>, Vec<f64>),
+        du: Vec<f64>,
+        dw: Vec<f64>,
+    ) -> Self {
         let nb = model.bodies.len();
         assert_eq!(xi.len(), 6 * nb * cols, "tangent: xi length");
         assert_eq!(dv.len(), 12 * nb * cols, "tangent: dv length");
         assert_eq!(du.len(), model.inputs.len() * cols, "tangent: du length");
+        assert_eq!(dw.len(), model.narm * cols, "tangent: dw length");
         let damped = model.joints.iter().any(|j| {
             j.stops.is_some_and(|s| s.damping != 0.0) || j.acts.iter().any(|a| a.bias[1] != 0.0)
         });
@@ -51,10 +60,11 @@ impl Tangent {
         });
         Self {
             cols,
-            start: (xi.clone(), dv.clone()),
+            start: (xi.clone(), dv.clone(), dw.clone()),
             xi,
             dv,
             du,
+            dw,
             mirror,
         }
     }
@@ -63,11 +73,13 @@ impl Tangent {
     pub(crate) fn rewind(&mut self) {
         self.xi.copy_from_slice(&self.start.0);
         self.dv.copy_from_slice(&self.start.1);
+        self.dw.copy_from_slice(&self.start.2);
     }
 
     /// The step in progress is committed: its end is the next step's start.
     pub(crate) fn accept(&mut self) {
         self.start.0.copy_from_slice(&self.xi);
         self.start.1.copy_from_slice(&self.dv);
+        self.start.2.copy_from_slice(&self.dw);
     }
 }
