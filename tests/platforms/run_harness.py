@@ -41,7 +41,10 @@ REL_TOL = 1e-12
 # slider_crank (a closed loop): its coordinates and rates agree to 1e-14 between libms, but
 # system.p and system.L, read from the integrator's nodal velocities, differ by up to 9e-12
 # relative after 1 s (measured: win64 4.9e-12 on p[3] = 0.554); held to 1e-10
-LOOSE = {"slider_crank": 1e-10}
+# gripper (examples/specs/gripper.toml: a turning wrist, coupled fingers, a friction bristle):
+# its coordinates agree to round-off, but system.p[3] differs by 2.2e-12 (win64 against linux64,
+# measured), the libms' last places amplified by the stiff bristle; held to 1e-10 as well
+LOOSE = {"slider_crank": 1e-10, "gripper": 1e-10}
 EW_TOL = 1e-12
 
 
