@@ -37,7 +37,7 @@ use crate::mechanics::linalg::tree::{solve_tree, Block};
 
 use super::constraint::{body_nodes, Nodes};
 use super::kernels::{node_block, row_q};
-use super::runtime::{DofRt, Model};
+use super::runtime::Model;
 use super::sink::Sink;
 use crate::math::Vec3;
 
@@ -168,25 +168,7 @@ pub(crate) fn project_velocities(model: &Model, q: &[f64], v: &[f64], pw: &mut P
             let qb = body_nodes(q, jt.child);
             let da = [qa[1], qa[2], qa[3]];
             let db = [qb[1], qb[2], qb[3]];
-            let mut rate = [Vec3::zeros(); 8];
-            match &jt.dofs[0] {
-                DofRt::Turn(tr) => {
-                    let (sv, cv) = (tr.sin.eval(&qa, &qb), tr.cos.eval(&qa, &qb));
-                    let r2 = sv * sv + cv * cv;
-                    tr.sin.gradient(&qa, &qb, &mut grad);
-                    let mut gc = [Vec3::zeros(); 8];
-                    tr.cos.gradient(&qa, &qb, &mut gc);
-                    for n in 0..8 {
-                        rate[n] = (grad[n] * cv - gc[n] * sv) * (w / r2);
-                    }
-                }
-                DofRt::Slide(row) => {
-                    row.gradient(&qa, &qb, &mut grad);
-                    for n in 0..8 {
-                        rate[n] = grad[n] * w;
-                    }
-                }
-            }
+            let rate = jt.dofs[0].rate_gradient(&qa, &qb).map(|g| g * w);
             let gb = row_q(&rate[4..], &db);
             sink.mu_body(nj + c, 0, jt.child, &gb);
             sink.body_mu(jt.child, nj + c, 0, &gb);

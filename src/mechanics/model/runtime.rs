@@ -4,7 +4,7 @@
 //! here (the mass data, the active constraint rows of every joint, the joint coordinates used by
 //! loads, the tree order used by the block elimination, the initial `q0`, `v0`).
 
-use super::constraint::{DotRow, LinVec};
+use super::constraint::{DotRow, LinVec, Nodes, NODES};
 use super::def::{JointType, ModelDef, SolverSettings};
 use super::joint::JointGeom;
 use super::sparse_row::SparseRow;
@@ -97,6 +97,29 @@ pub(crate) enum DofRt {
     Slide(DotRow),
     /// Rotation about the world axis `n(q)` by the angle `atan2(s, c)` (see `turn`).
     Turn(TurnRt),
+}
+
+impl DofRt {
+    /// The gradient of the coordinate's value at the nodes `qa`, `qb` over the eight nodes
+    /// (world frame): a slide's `∇s`, a turn's `∇t = (c ∇s − s ∇c)/(s² + c²)`; its rate along
+    /// node velocities is the coordinate's rate.
+    pub(crate) fn rate_gradient(&self, qa: &Nodes, qb: &Nodes) -> [Vec3; 2 * NODES] {
+        let mut g = [Vec3::zeros(); 2 * NODES];
+        match self {
+            Self::Slide(row) => row.gradient(qa, qb, &mut g),
+            Self::Turn(tr) => {
+                let (s, c) = (tr.sin.eval(qa, qb), tr.cos.eval(qa, qb));
+                let r2 = s * s + c * c;
+                let mut gc = [Vec3::zeros(); 2 * NODES];
+                tr.sin.gradient(qa, qb, &mut g);
+                tr.cos.gradient(qa, qb, &mut gc);
+                for (x, y) in g.iter_mut().zip(&gc) {
+                    *x = (*x * c - y * s) / r2;
+                }
+            }
+        }
+        g
+    }
 }
 
 /// A coupling `q_b = ratio · q_a + offset` of two one-coordinate joints as the step sees it

@@ -91,17 +91,22 @@ pub(crate) fn update(model: &Model, ws: &mut Work) -> (f64, f64) {
         }
     }
     // coupling rows, always in the border (after the joints' row groups)
-    let nj = model.joints.len();
     for (c, cp) in model.couplings.iter().enumerate() {
         let br = &model.bodies[model.joints[cp.b].child];
         let scale = br.fs.max(model.lc.max(1.0) * br.ms);
-        let dm = if model.dense {
-            ws.drhs[6 * nb + cp.row]
-        } else {
-            ws.border.rc[ws.border.lrow[nj + c].unwrap_or(0)]
-        };
+        let dm = coupling_entry(model, ws, c);
         ws.mu[cp.row] += dm;
         dmu = dmu.max(dm.abs() * scale);
     }
     (upd, dmu)
+}
+
+/// The solution entry of coupling `c`'s multiplier after a solve (always in the border; the
+/// dense oracle's after the joints' rows).
+pub(crate) fn coupling_entry(model: &Model, ws: &Work, c: usize) -> f64 {
+    if model.dense {
+        ws.drhs[6 * model.bodies.len() + model.couplings[c].row]
+    } else {
+        ws.border.lrow[model.joints.len() + c].map_or(0.0, |l| ws.border.rc[l])
+    }
 }

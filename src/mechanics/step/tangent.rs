@@ -49,6 +49,7 @@
 #![allow(clippy::needless_range_loop)]
 
 use super::error::StepError;
+use super::increment::coupling_entry;
 use super::joint_loads::Pair;
 use super::newton::{evaluate, resolve, solve, stage_rates, Held, Mode, Work};
 pub use super::tangent_state::Tangent;
@@ -447,8 +448,8 @@ fn perturbation(q: &[f64], xi: &[f64], b: Option<usize>) -> [Vec3; 4] {
     ]
 }
 
-/// The rate of a joint's coordinate at nodes `qa`, `qb` along node perturbations `da`, `db`:
-/// a turn `(c ∇s − s ∇c)·δq/(s² + c²)`, a slide `∇s·δq`.
+/// The rate of a joint's coordinate at nodes `qa`, `qb` along node perturbations `da`, `db`
+/// (`DofRt::rate_gradient`).
 fn coordinate_rate(
     dof: &DofRt,
     qa: &[Vec3; 4],
@@ -456,20 +457,10 @@ fn coordinate_rate(
     da: &[Vec3; 4],
     db: &[Vec3; 4],
 ) -> f64 {
-    let along = |row: &crate::mechanics::model::constraint::DotRow| {
-        let mut g = [Vec3::zeros(); 8];
-        row.gradient(qa, qb, &mut g);
-        (0..4)
-            .map(|k| g[k].dot(&da[k]) + g[4 + k].dot(&db[k]))
-            .sum::<f64>()
-    };
-    match dof {
-        DofRt::Slide(row) => along(row),
-        DofRt::Turn(tr) => {
-            let (s, c) = (tr.sin.eval(qa, qb), tr.cos.eval(qa, qb));
-            (c * along(&tr.sin) - s * along(&tr.cos)) / (s * s + c * c)
-        }
-    }
+    let g = dof.rate_gradient(qa, qb);
+    (0..4)
+        .map(|k| g[k].dot(&da[k]) + g[4 + k].dot(&db[k]))
+        .sum()
 }
 
 /// The half-width of the central difference of input `i` at `u`: 1 (the residual is affine
@@ -525,15 +516,6 @@ fn mu_entry(model: &Model, ws: &Work, j: usize, k: usize) -> f64 {
         ws.border.rc[l + k]
     } else {
         ws.blocks[jt.child].r[6 + k]
-    }
-}
-
-/// The solution entry of coupling `c`'s multiplier (after a solve; always in the border).
-fn coupling_entry(model: &Model, ws: &Work, c: usize) -> f64 {
-    if model.dense {
-        ws.drhs[6 * model.bodies.len() + model.couplings[c].row]
-    } else {
-        ws.border.lrow[model.joints.len() + c].map_or(0.0, |l| ws.border.rc[l])
     }
 }
 
