@@ -7,7 +7,7 @@ mod common;
 
 use common::spec_model;
 use common::trees::{ALL_KINDS, ROTOR};
-use triad::mechanics::{step, Model, Operating, State};
+use triad::mechanics::{step, Model, State};
 
 fn rotor(friction: f64) -> String {
     format!("{ROTOR}friction = {friction}\n")
@@ -111,8 +111,8 @@ fn energy_minus_work_is_exact_with_friction() {
     }
 }
 
-/// What friction rules out is refused by name: a negative value, a spherical joint's, and a
-/// linear model (friction has no derivative where a joint sticks).
+/// What friction rules out is refused by name: a negative value, a spherical joint's, and the
+/// FMU's directional derivatives (its bristle is no FMU state; `triad linearize` has it).
 #[test]
 fn friction_refusals_are_named() {
     let bad = ALL_KINDS.replace("name = \"j1\"", "name = \"j1\"\nfriction = -1.0");
@@ -130,7 +130,9 @@ fn friction_refusals_are_named() {
         .map(|()| String::new())
         .unwrap_or_else(|e| e.to_string());
     assert!(err.contains("spherical joints take no friction"), "{err}");
-    let (m, s) = spec_model(&rotor(0.5));
-    let e = Operating::of(&m, &s).unwrap_err().to_string();
-    assert!(e.contains("friction=0"), "{e}");
+    let (m, _) = spec_model(&rotor(0.5));
+    let e = triad::mechanics::supported(m.def())
+        .unwrap_err()
+        .to_string();
+    assert!(e.contains("Coulomb friction"), "{e}");
 }

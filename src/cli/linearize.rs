@@ -227,7 +227,15 @@ pub fn run(args: &LinearizeArgs) -> Result<(), CliError> {
         (Some(path), Some(t)) => {
             let names = op.tree_names(sim.model());
             from_result(&mut op, &names, path, t, &def)?;
+            op.forget_bristles();
             op.pick(sim.model(), &pick).map_err(coordinates_error)?;
+            if let (Some((before, after)), true) = (op.fitted, op.dynamics.sticking().n() > 0) {
+                eprintln!(
+                    "note: {} does not record the friction bristles; they are fitted to the point \
+                     (least squares: |accelerations| {before:.3e} with none, {after:.3e} fitted)",
+                    path.display()
+                );
+            }
             t
         }
         _ => start,

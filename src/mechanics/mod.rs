@@ -38,6 +38,7 @@ pub use model::error::ModelError;
 pub use model::linear::{Linear, Quantity};
 pub use model::loop_closure::{Closure, Independent};
 pub use model::runtime::{InputSlot, Model};
+pub use model::sticking::Sticking;
 pub use model::tree_dynamics::{linearizable, supported, Coord, TreeDynamics, Unsupported};
 pub use model::{body, constraint, contact, def, joint, kinematics, loops, ranges};
 pub use run::advance::{controlled_step, step, step_state};

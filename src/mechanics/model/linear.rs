@@ -9,6 +9,9 @@
 //!       the dual number ν̇₀ + ε ∂ν̇/∂(x, u)
 //! ```
 //!
+//! Touching contacts and joint friction add their sticking bristles `σ` to the state
+//! (`sticking`): `x = (q, ν, σ)`, `σ̇` their rates, the residual affine in `σ`.
+//!
 //! Cost: `2n + m` passes of O(bodies) each, one LU of the `n × n` mass matrix and one solve per
 //! direction: O(n·N + n³).
 
@@ -168,7 +171,8 @@ impl TreeDynamics {
             .collect())
     }
 
-    /// The exact linear model at `(q, ν, u)` with outputs `ys` (module formulas).
+    /// The exact linear model at `(q, ν, u)` with outputs `ys` (module formulas); the state
+    /// `x = (q, ν, σ)` with the sticking bristles `σ` (`sticking`) last.
     ///
     /// # Errors
     /// A message when the joint-space mass matrix is singular.
@@ -180,45 +184,53 @@ impl TreeDynamics {
         ys: &[Quantity],
     ) -> Result<Linear, String> {
         let (n, m, p) = (self.n(), self.n_inputs(), ys.len());
+        let sigma = self.sticking().sigma0().to_vec();
+        let nx = 2 * n + sigma.len();
         let (nud0, lu) = self.accelerations(q, nu, u)?;
         let nud_d: Vec<Dual64> = nud0.iter().map(|&x| Dual64::from(x)).collect();
-        let mut a = DMatrix::zeros(2 * n, 2 * n);
-        let mut b = DMatrix::zeros(2 * n, m);
-        let mut cm = DMatrix::zeros(p, 2 * n);
+        let mut a = DMatrix::zeros(nx, nx);
+        let mut b = DMatrix::zeros(nx, m);
+        let mut cm = DMatrix::zeros(p, nx);
         let mut d = DMatrix::zeros(p, m);
-        for col in 0..2 * n + m {
+        for col in 0..nx + m {
             let qd = lift(q, (col < n).then_some(col));
             let vd = lift(nu, (n..2 * n).contains(&col).then(|| col - n));
-            let ud = lift(u, (col >= 2 * n).then(|| col - 2 * n));
-            let res = self.residual(&qd, &vd, &nud_d, &ud, false);
+            let sd = lift(&sigma, (2 * n..nx).contains(&col).then(|| col - 2 * n));
+            let ud = lift(u, (col >= nx).then(|| col - nx));
+            let res = self.residual_with(&qd, &vd, &nud_d, &ud, &sd, false);
             let r = DVector::from_iterator(n, res.iter().map(|x| -x.eps));
             let dnud = lu
                 .solve(&r)
                 .ok_or_else(|| "the joint-space mass matrix is singular".to_string())?;
             let qdot = self.qdot(&qd, &vd);
+            let sdot = self.bristle_rates(&qd, &vd);
             let nud_col: Vec<Dual64> = (0..n).map(|i| Dual64::new(nud0[i], dnud[i])).collect();
             let mut put = |row: usize, val: f64| {
-                if col < 2 * n {
+                if col < nx {
                     a[(row, col)] = val;
                 } else {
-                    b[(row, col - 2 * n)] = val;
+                    b[(row, col - nx)] = val;
                 }
             };
             for i in 0..n {
                 put(i, qdot[i].eps);
                 put(n + i, dnud[i]);
             }
+            for (i, s) in sdot.iter().enumerate() {
+                put(2 * n + i, s.eps);
+            }
             for (k, y) in ys.iter().enumerate() {
                 let v = self.quantity(&qd, &vd, &nud_col, *y).eps;
-                if col < 2 * n {
+                if col < nx {
                     cm[(k, col)] = v;
                 } else {
-                    d[(k, col - 2 * n)] = v;
+                    d[(k, col - nx)] = v;
                 }
             }
         }
         let mut xdot0 = self.qdot(q, nu);
         xdot0.extend_from_slice(&nud0);
+        xdot0.extend(self.bristle_rates(q, nu));
         let y0 = ys.iter().map(|y| self.quantity(q, nu, &nud0, *y)).collect();
         Ok(Linear {
             a,

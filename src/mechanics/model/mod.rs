@@ -53,5 +53,6 @@ pub(crate) mod redundancy;
 pub(crate) mod runtime;
 pub(crate) mod sink;
 pub(crate) mod sparse_row;
+pub mod sticking;
 pub(crate) mod stops;
 pub mod tree_dynamics;

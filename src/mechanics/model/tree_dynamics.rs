@@ -34,7 +34,9 @@
 //! forces, springs and dampers per coordinate, a spherical joint's damper `−c(ω_B − ω_A)` and
 //! torques about its parent joint-frame axes, body torques and forces (world frame, at the
 //! centre of mass), gravity. Loop-closing joints are not tree edges: their rows constrain the
-//! tree's coordinates (`loop_closure`, `loop_linear`). Contact is not part of this model.
+//! tree's coordinates (`loop_closure`, `loop_linear`). Ground contacts touching at the
+//! operating point and joint friction load the bodies and coordinates through their sticking
+//! bristles (`sticking`, states beside `(q, ν)`).
 // index loops over coupled fixed-size arrays read closer to the formulas than iterator chains
 #![allow(clippy::needless_range_loop)]
 
@@ -42,6 +44,7 @@ use super::def::{JointType, ModelDef};
 use super::joint::joint_frame;
 use super::joint_actuator::JointActuator;
 use super::runtime::Model;
+use super::sticking::{lift_sigma, Sticking};
 use super::stops::Stops;
 use crate::math::{Mat3, Vec3};
 use nalgebra::{Matrix3, RealField, Vector3};
@@ -142,6 +145,9 @@ pub struct TreeDynamics {
     sites: Vec<(usize, Vec3, Mat3)>,
     coords: Vec<Coord>,
     nu: usize,
+    /// The touching ground points and the joints' friction bristles of the operating point
+    /// (`sticking`; empty until [`TreeDynamics::set_sticking`]).
+    sticking: Sticking,
 }
 
 /// A joint's relative motion in its parent joint frame: `M`, `τ`, the rate columns `(a_k, b_k)`
@@ -176,6 +182,12 @@ pub enum Unsupported {
     Friction(String),
     /// A joint follows another through a coupling.
     Coupling(String),
+    /// Two bodies' shapes touch at the operating point (their names).
+    Touching(String, String),
+    /// A bristle slides at the operating point: its name and its load, percent of the limit.
+    Sliding(String, u32),
+    /// Closed loops or couplings with touching contacts or joint friction.
+    LoopSticking,
 }
 
 impl std::fmt::Display for Unsupported {
@@ -183,16 +195,20 @@ impl std::fmt::Display for Unsupported {
         match self {
             Self::Loop(j) => write!(f, "joint '{j}' closes a kinematic loop; closed loops are linearised by `triad linearize` only (in independent coordinates), not here"),
             Self::Closure(why) => write!(f, "{why}"),
-            Self::Contact => write!(f, "the model has collision shapes; linear models with contact are not available yet (build it without contacts, e.g. `--no-contacts` or without [[collision]])"),
-            Self::Friction(j) => write!(f, "joint '{j}' has Coulomb friction, which has no derivative where the joint sticks; linearise without it (`--set joint.{j}.friction=0`)"),
+            Self::Contact => write!(f, "the model has collision shapes; contact is linearised by `triad linearize` only (its bristles are states there), not here"),
+            Self::Friction(j) => write!(f, "joint '{j}' has Coulomb friction; joint friction is linearised by `triad linearize` only (its bristle is a state there), not here"),
+            Self::Touching(a, b) => write!(f, "shapes '{a}' and '{b}' touch at the operating point; linear models cover contact with the ground only (move the point, or leave the pair out)"),
+            Self::Sliding(what, r) => write!(f, "{what} slides at the operating point (its friction at {r}% of its limit; a linear model needs every bristle to stick, below {:.0}%: it has no continuous-time limit while it slides)", 100.0 * super::contact_law::YIELD),
+            Self::LoopSticking => write!(f, "closed loops or couplings together with touching contacts or joint friction have no linear model here yet"),
             Self::Coupling(j) => write!(f, "joint '{j}' follows another joint through a [[coupling]]; coupled joints are linearised by `triad linearize` only (in independent coordinates), not here"),
         }
     }
 }
 
 /// Whether `def` has a minimal-coordinate dynamics in tree coordinates alone: a tree (no
-/// loop-closing joint) without collision shapes, joint friction or couplings. The FMU's
-/// directional derivatives and the `joint.J.qdd` outputs ask this.
+/// loop-closing joint) without collision shapes, joint friction or couplings (whose bristles
+/// would be states the FMU does not declare). The FMU's directional derivatives and the
+/// `joint.J.qdd` outputs ask this.
 ///
 /// # Errors
 /// [`Unsupported`] naming the first obstacle.
@@ -203,22 +219,24 @@ pub fn supported(def: &ModelDef) -> Result<(), Unsupported> {
     if let Some(c) = def.couplings.first() {
         return Err(Unsupported::Coupling(def.joints[c.b].name.clone()));
     }
-    linearizable(def)
-}
-
-/// Whether `def` has a linear model here (`triad linearize`): no collision shapes, no joint
-/// friction; closed loops are allowed (their tree coordinates subject to the loop closure,
-/// `loop_closure`).
-///
-/// # Errors
-/// [`Unsupported`] naming the first obstacle.
-pub fn linearizable(def: &ModelDef) -> Result<(), Unsupported> {
     if !def.contact.shapes.is_empty() {
         return Err(Unsupported::Contact);
     }
     if let Some(j) = def.joints.iter().find(|j| j.friction > 0.0) {
         return Err(Unsupported::Friction(j.name.clone()));
     }
+    linearizable(def)
+}
+
+/// Whether `def` has a linear model here (`triad linearize`): every model does, closed loops
+/// in their independent coordinates (`loop_closure`), contact and joint friction through
+/// their sticking bristles (`sticking`); what the operating point allows is checked there.
+///
+/// # Errors
+/// None today; kept for the obstacles a model may bring.
+#[allow(clippy::unnecessary_wraps)]
+pub fn linearizable(def: &ModelDef) -> Result<(), Unsupported> {
+    let _ = def;
     Ok(())
 }
 
@@ -313,6 +331,7 @@ impl TreeDynamics {
                 .collect(),
             nu: model.inputs.len(),
             coords,
+            sticking: Sticking::default(),
         })
     }
 
@@ -483,6 +502,28 @@ impl TreeDynamics {
         m
     }
 
+    /// Centre of mass of body `b`, body frame, m.
+    pub(crate) fn body_com(&self, b: usize) -> Vec3 {
+        self.com[b]
+    }
+
+    /// The touching points and friction bristles of the operating point (`sticking`).
+    #[must_use]
+    pub fn sticking(&self) -> &Sticking {
+        &self.sticking
+    }
+
+    /// Sets the touching points and friction bristles of the operating point.
+    pub fn set_sticking(&mut self, s: Sticking) {
+        self.sticking = s;
+    }
+
+    /// The bristles' rates `σ̇` at `(q, ν)` (`sticking`).
+    pub fn bristle_rates<T: Real>(&self, q: &[T], nu: &[T]) -> Vec<T> {
+        let m = self.motion(q, nu, None);
+        self.sticking.rates(self, &m, nu)
+    }
+
     /// Mass of body `b`, kg.
     pub(crate) fn body_mass(&self, b: usize) -> f64 {
         self.mass[b]
@@ -506,14 +547,29 @@ impl TreeDynamics {
 
     /// The inverse-dynamics residual `Q(q, ν, ν̇) − Q_applied(q, ν, u)` (len `n`). With
     /// `inertial_only`, gravity, inputs, springs, dampers and stops are left out (then the
-    /// residual is `M(q) ν̇ + C(q, ν) ν`).
-    #[allow(clippy::too_many_lines)]
+    /// residual is `M(q) ν̇ + C(q, ν) ν`). Touching contacts and joint friction load it with
+    /// their bristles at the operating point's values (`sticking`).
     pub fn residual<T: Real>(
         &self,
         q: &[T],
         nu: &[T],
         nud: &[T],
         u: &[T],
+        inertial_only: bool,
+    ) -> Vec<T> {
+        self.residual_with(q, nu, nud, u, &lift_sigma(&self.sticking), inertial_only)
+    }
+
+    /// [`TreeDynamics::residual`] with the bristles at `sigma` (`sticking`) instead of the
+    /// operating point's.
+    #[allow(clippy::too_many_lines)]
+    pub fn residual_with<T: Real>(
+        &self,
+        q: &[T],
+        nu: &[T],
+        nud: &[T],
+        u: &[T],
+        sigma: &[T],
         inertial_only: bool,
     ) -> Vec<T> {
         let m = self.motion(q, nu, Some(nud));
@@ -554,6 +610,7 @@ impl TreeDynamics {
                     ne[p] -= t;
                 }
             }
+            self.sticking.body_loads(self, &m, sigma, &mut fe, &mut ne);
         }
         for b in 0..nb {
             let mass = c::<T>(self.mass[b]);
@@ -606,6 +663,11 @@ impl TreeDynamics {
                     }
                     res[jd.at + k] -= gen;
                 }
+            }
+            let mut fric = vec![T::zero(); res.len()];
+            self.sticking.joint_loads(nu, sigma, &mut fric);
+            for (r, f) in res.iter_mut().zip(fric) {
+                *r -= f;
             }
         }
         res

@@ -11,6 +11,8 @@
 //! the state's current values.
 //!
 //! ```text
+//! touching contacts, joint friction: their sticking bristles σ (`sticking`) follow, x = (q, ν, σ):
+//!   the state's, or (a result's row, which does not record them) fitted to the accelerations
 //! closed loops: q, ν above are the tree's (every tree joint); the loops' split (`loop_closure`)
 //!   picks I, then q_D, ν_D are solved from q_I, ν_I (the point closes the loops to round-off)
 //!   and the state is x = (q_I, ν_I)
@@ -19,10 +21,14 @@
 use super::state::State;
 use crate::math::{exp_so3, matrix_to_quat, quat_to_matrix, Mat3, Vec3};
 use crate::mechanics::model::def::{JointInitial, ModelDef};
+use crate::mechanics::model::linear::lift;
 use crate::mechanics::model::linear::{Linear, Quantity};
 use crate::mechanics::model::loop_closure::{Closure, Independent};
 use crate::mechanics::model::runtime::Model;
+use crate::mechanics::model::sticking::Sticking;
 use crate::mechanics::model::tree_dynamics::{Coord, TreeDynamics, Unsupported};
+use nalgebra::{DMatrix, DVector};
+use num_dual::Dual64;
 
 /// A state in minimal coordinates, ready to linearise.
 #[derive(Clone, Debug)]
@@ -37,6 +43,12 @@ pub struct Operating {
     pub u: Vec<f64>,
     /// The loops' closure and split into independent coordinates (`None`: a tree).
     pub loops: Option<Closure>,
+    /// The state's contact bristles (3 per ground point, world) and joint friction bristles,
+    /// from which [`Operating::pick`] takes the sticking ones; `None` when unknown (a point
+    /// read from a result): then they are fitted ([`Operating::fit_bristles`]).
+    bristles: Option<(Vec<f64>, Vec<f64>)>,
+    /// `|ν̇|` before and after the last fit of the bristles, if they were fitted.
+    pub fitted: Option<(f64, f64)>,
 }
 
 impl Operating {
@@ -99,6 +111,8 @@ impl Operating {
             nu,
             u: state.inputs().to_vec(),
             loops: None,
+            bristles: Some((state.bristle.clone(), state.fric.clone())),
+            fitted: None,
         };
         op.pick(model, pick).map_err(Unsupported::Closure)?;
         Ok(op)
@@ -118,10 +132,89 @@ impl Operating {
             self.q = q;
             self.nu = nu;
         }
-        Ok(())
+        self.touch(model).map_err(|e| e.to_string())
     }
 
-    /// The state `x`: `(q, ν)`, or `(q_I, ν_I)` with closed loops.
+    /// Takes the touching ground points and the joints' friction bristles at this point
+    /// (`sticking`), the bristles from the state or, unknown, fitted; checks that they stick.
+    fn touch(&mut self, model: &Model) -> Result<(), Unsupported> {
+        let n3 = 3 * model.contact.bristles();
+        let (bristle, fric) = self
+            .bristles
+            .clone()
+            .unwrap_or_else(|| (vec![0.0; n3], vec![0.0; model.nfric]));
+        let s = Sticking::at(&self.dynamics, model, &self.q, &bristle, &fric)?;
+        if self.loops.is_some() && !s.is_empty() {
+            return Err(Unsupported::LoopSticking);
+        }
+        self.dynamics.set_sticking(s);
+        if self.bristles.is_none() {
+            self.fitted = Some(self.fit_bristles().map_err(Unsupported::Closure)?);
+        }
+        self.dynamics
+            .sticking()
+            .check(&self.dynamics, &self.q, &self.nu)
+    }
+
+    /// Forgets the state's bristles (a point read from a result, which does not record them):
+    /// the next [`Operating::pick`] fits them.
+    pub fn forget_bristles(&mut self) {
+        self.bristles = None;
+    }
+
+    /// Fits the sticking bristles `σ` to the point: the accelerations `ν̇ = ν̇₀ + G σ` (affine
+    /// in `σ`) closest to 0 in the kinetic metric, `min |Lᵀ(ν̇₀ + G σ)|` (`M = L Lᵀ`), the
+    /// least-norm `σ` (bristle stresses that move nothing stay 0). Returns `|ν̇|` before and
+    /// after.
+    ///
+    /// # Errors
+    /// A singular mass matrix.
+    pub fn fit_bristles(&mut self) -> Result<(f64, f64), String> {
+        let td = &self.dynamics;
+        let ns = td.sticking().n();
+        let (q, nu, u) = (&self.q, &self.nu, &self.u);
+        let n = q.len();
+        let mut st = td.sticking().clone();
+        st.set_sigma0(&vec![0.0; ns]);
+        let mut td0 = td.clone();
+        td0.set_sticking(st);
+        let (nud0, _) = td0.accelerations(q, nu, u)?;
+        let before = nud0.iter().map(|x| x * x).sum::<f64>().sqrt();
+        if ns == 0 {
+            return Ok((before, before));
+        }
+        let mass = td0.mass_matrix(q);
+        let chol = mass
+            .clone()
+            .cholesky()
+            .ok_or("the joint-space mass matrix is not positive definite")?;
+        let lt = chol.l().transpose();
+        // G = ∂ν̇/∂σ = −M⁻¹ ∂res/∂σ, one dual pass per bristle
+        let (qd, vd, ud) = (lift(q, None), lift(nu, None), lift(u, None));
+        let nud_d: Vec<Dual64> = nud0.iter().map(|&x| Dual64::from(x)).collect();
+        let mut g = DMatrix::zeros(n, ns);
+        for j in 0..ns {
+            let sd = lift(&vec![0.0; ns], Some(j));
+            let res = td0.residual_with(&qd, &vd, &nud_d, &ud, &sd, false);
+            let r = DVector::from_iterator(n, res.iter().map(|x| -x.eps));
+            g.set_column(j, &chol.solve(&r));
+        }
+        let a = &lt * &g;
+        let b = -(&lt * DVector::from_vec(nud0));
+        let svd = a.svd(true, true);
+        let tol = 1e-12 * svd.singular_values.max();
+        let sigma = svd.solve(&b, tol)?;
+        self.dynamics.set_sticking({
+            let mut s = self.dynamics.sticking().clone();
+            s.set_sigma0(sigma.as_slice());
+            s
+        });
+        let (after, _) = self.dynamics.accelerations(q, nu, u)?;
+        Ok((before, after.iter().map(|x| x * x).sum::<f64>().sqrt()))
+    }
+
+    /// The state `x`: `(q, ν, σ)` (`σ` the sticking bristles, `sticking`), or `(q_I, ν_I)`
+    /// with closed loops.
     #[must_use]
     pub fn x(&self) -> Vec<f64> {
         match &self.loops {
@@ -130,7 +223,13 @@ impl Operating {
                 .into_iter()
                 .chain(cl.pick(&self.nu))
                 .collect(),
-            None => self.q.iter().chain(&self.nu).copied().collect(),
+            None => self
+                .q
+                .iter()
+                .chain(&self.nu)
+                .chain(self.dynamics.sticking().sigma0())
+                .copied()
+                .collect(),
         }
     }
 
@@ -145,8 +244,8 @@ impl Operating {
                 cl.complete(&self.dynamics, &self.q, &x[..k], &x[k..])
             }
             None => {
-                let (q, nu) = x.split_at(self.q.len());
-                Ok((q.to_vec(), nu.to_vec()))
+                let n = self.q.len();
+                Ok((x[..n].to_vec(), x[n..2 * n].to_vec()))
             }
         }
     }
@@ -170,6 +269,8 @@ impl Operating {
             Quantity::JointQ(j, _) | Quantity::JointQd(j, _) | Quantity::JointQdd(j, _) => {
                 self.dynamics.joint_at(j).is_some()
             }
+            // the contact springs' and bristles' energy is not part of `tree_dynamics`'s
+            Quantity::Energy => self.dynamics.sticking().is_empty(),
             _ => true,
         }
     }
@@ -244,7 +345,10 @@ impl Operating {
                     .map(|&i| all[i].clone())
                     .collect()
             }
-            None => all,
+            None => all
+                .into_iter()
+                .chain(self.dynamics.sticking().names(model))
+                .collect(),
         }
     }
 

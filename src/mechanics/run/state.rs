@@ -165,6 +165,19 @@ impl State {
         &mut self.inputs
     }
 
+    /// The contact friction bristles' deflections (3 per ground point, world frame, then per
+    /// body–body feature), m.
+    #[must_use]
+    pub fn contact_bristles(&self) -> &[f64] {
+        &self.bristle
+    }
+
+    /// The joint friction bristles' deflections (one per coordinate with friction), rad or m.
+    #[must_use]
+    pub fn joint_bristles(&self) -> &[f64] {
+        &self.fric
+    }
+
     /// Damping of joint `j` (tunable), N·m·s/rad or N·s/m.
     #[must_use]
     pub fn damping(&self, j: usize) -> f64 {

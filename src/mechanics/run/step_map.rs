@@ -41,6 +41,12 @@ pub fn begin_step_map(
     state: &mut State,
     pick: &Independent,
 ) -> Result<Independent, String> {
+    if !model.contact.is_empty() || model.nfric > 0 {
+        return Err(
+            "the step's tangent map does not cover contact and joint friction yet (A, B, C, D do)"
+                .into(),
+        );
+    }
     let op = Operating::picked(model, state, pick).map_err(|e| e.to_string())?;
     let (n, m) = (op.x().len() / 2, model.inputs.len());
     let nb = model.bodies.len();
