@@ -34,7 +34,7 @@ pub struct LinearizeArgs {
     pub step: Option<f64>,
     /// Take the operating point from this result CSV (as `simulate` or fmpy write it: the
     /// joint coordinates and rates, spherical joints' quat and w, free bodies' r, R, v, w) at
-    /// --time.
+    /// --time. A result does not record friction bristles: they are fitted to the row.
     #[arg(long, value_name = "RESULT.csv", requires = "time")]
     pub at: Option<PathBuf>,
     /// The time of the row of --at to linearise at, s.
@@ -230,9 +230,17 @@ pub fn run(args: &LinearizeArgs) -> Result<(), CliError> {
             op.forget_bristles();
             op.pick(sim.model(), &pick).map_err(coordinates_error)?;
             if let (Some((before, after)), true) = (op.fitted, op.dynamics.sticking().n() > 0) {
+                let speed = op
+                    .dynamics
+                    .bristle_rates(&op.q, &op.nu)
+                    .iter()
+                    .fold(0.0_f64, |m, x| m.max(x.abs()));
                 eprintln!(
                     "note: {} does not record the friction bristles; they are fitted to the point \
-                     (least squares: |accelerations| {before:.3e} with none, {after:.3e} fitted)",
+                     (least squares: |accelerations| {before:.3e} with none, {after:.3e} fitted). \
+                     The bristles' points move at up to {speed:.3e} m/s (or rad/s): where that is \
+                     more than a sticking bristle's small vibration they slide, and this model \
+                     describes them sticking",
                     path.display()
                 );
             }

@@ -66,8 +66,9 @@ pub enum Command {
     /// then their rates), from analytic derivatives (not finite differences), written as
     /// .json, .npz or .mat with the names of x, u, y and the operating point (x0, u0, y0,
     /// xdot0, t0), and the exact discrete-time Ad, Bd of one step (--step). Closed loops: x holds
-    /// independent coordinates (--coordinates picks them). Not with collision shapes or joint
-    /// friction.
+    /// independent coordinates (--coordinates picks them). Contact and joint friction: the
+    /// sticking bristles of the touching ground points and the friction joints are states too
+    /// (contact.C.s[i], joint.J.s; sliding is refused by name); no Ad, Bd with them yet.
     #[command(allow_negative_numbers = true)]
     Linearize(linearize::LinearizeArgs),
     /// Write a 3-D replay of a result CSV: one self-contained HTML file (works offline) that
