@@ -8,7 +8,7 @@
 //! protocol), the iterations, the stages handed to the multiplier form, and on stderr the
 //! energy balance `E − E₀ − work` at the end. Same settings as `benches/step.rs` (order 2,
 //! h = 1e-3, tolerance 1e-10). Environment: `TRIAD_MULTIPLIERS=1` solves trees in the
-//! multiplier form too, `TRIAD_REDUCED=1` every tree in the reduced form (the default); `TRIAD_TRACE=1` prints the energy balance, iterations, stages handed back, energy, work, time and the largest body angular velocity after every step; `TRIAD_ORDER4=1` steps with the
+//! multiplier form too, `TRIAD_REDUCED=1` every tree in the reduced form (the default); `TRIAD_ARMATURE=A` puts a rotor inertia A on every joint; `TRIAD_TRACE=1` prints the energy balance, iterations, stages handed back, energy, work, time and the largest body angular velocity after every step; `TRIAD_ORDER4=1` steps with the
 //! order-4 composition (`TRIAD_STAGES5=1`: Suzuki's five stages instead of the triple jump).
 use triad::mechanics::{step_state, Model, SolverSettings, State};
 
@@ -47,6 +47,15 @@ fn main() {
         }
         _ => common::double_pendulum(),
     };
+    let mut def = def;
+    if let Some(a) = std::env::var("TRIAD_ARMATURE")
+        .ok()
+        .and_then(|x| x.parse::<f64>().ok())
+    {
+        for j in &mut def.joints {
+            j.armature = a;
+        }
+    }
     let h: f64 = args.get(3).and_then(|x| x.parse().ok()).unwrap_or(1e-3);
     let s = SolverSettings {
         max_step: h,
