@@ -5,7 +5,9 @@ fmpy's getDirectionalDerivative (exact: the FMU computes the derivatives analyti
     python examples/linearize_fmpy.py MODEL.fmu [--time T] [--step H] [-o OUT.npz]
 
 The FMU declares its states in <ModelStructure><Derivatives> (the joint coordinates and rates
-of a tree without contact); A = d(derivatives)/d(states) and B = d(derivatives)/d(inputs), one
+of a tree without contact or joint friction; with closed loops or couplings, the independent
+coordinates and rates that `triad linearize` picks at the model's initial state, e.g. the
+four-bar's crank); A = d(derivatives)/d(states) and B = d(derivatives)/d(inputs), one
 directional derivative per column. With --time the FMU first runs to T (inputs 0, steps H).
 Prints the state and input names and the eigenvalues of A; writes A, B and the names to OUT.npz.
 """
@@ -22,7 +24,7 @@ def linear_model(fmu_path, time=0.0, step=0.01):
     """(A, B, state names, input names) of the FMU at `time`."""
     md = read_model_description(fmu_path)
     if not md.coSimulation.providesDirectionalDerivative:
-        raise SystemExit(f"{fmu_path}: the FMU provides no directional derivatives (a model with loops or contact)")
+        raise SystemExit(f"{fmu_path}: the FMU provides no directional derivatives (a model with contact or joint friction)")
     unzip = extract(fmu_path)
     slave = FMU2Slave(guid=md.guid, unzipDirectory=unzip, modelIdentifier=md.coSimulation.modelIdentifier,
                       instanceName="linearize")

@@ -14,4 +14,6 @@ mod table;
 mod types;
 
 pub use access::{read_param, read_state, write_param};
-pub use types::{Accessor, Causality, Initial, VarType, Variability, Variable, VariableTable};
+pub use types::{
+    Accessor, Causality, Initial, LoopStates, VarType, Variability, Variable, VariableTable,
+};

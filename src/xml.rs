@@ -5,7 +5,7 @@
 use crate::fmu::contract::Spec;
 use crate::fmu::{Category, CAPABILITIES};
 use crate::mechanics::SolverSettings;
-use crate::variables::linear::{states, States};
+use crate::variables::linear::{differentiable, states, States};
 use crate::variables::{Accessor, Causality, Initial, VarType, Variable, VariableTable};
 use quick_xml::events::{BytesDecl, BytesText, Event};
 use quick_xml::Writer;
@@ -195,15 +195,16 @@ fn derivative_of(st: Option<&States>, i: usize) -> Option<usize> {
 }
 
 /// The `dependencies` of output `i` (0-based) when the model declares states: every state,
-/// and every input too for an acceleration (direct feedthrough); none for `system.work` and
-/// the constraint residual (accumulated or solver quantities); without states, none (outputs
-/// are values of the last step, not of the inputs).
+/// and every input too for an acceleration (direct feedthrough); none for what has no
+/// directional derivatives (`variables::linear::differentiable`: `system.work` and the
+/// constraint residual, accumulated or solver quantities; loop-closing joints' coordinates and
+/// rates); without states, none (outputs are values of the last step, not of the inputs).
 fn output_dependencies(table: &VariableTable, st: Option<&States>, i: usize) -> String {
     let Some(st) = st else {
         return String::new();
     };
     let v = &table.vars[i];
-    if matches!(v.accessor, Accessor::Work | Accessor::ConstraintResidual) {
+    if !differentiable(table, v.accessor) {
         return String::new();
     }
     let mut deps: Vec<usize> = st.q.iter().chain(&st.qd).map(|k| k + 1).collect();

@@ -7,7 +7,7 @@
 
 use crate::fmu::Category;
 use crate::variables::fmi3::{Table3, Var3, TIME_VR};
-use crate::variables::linear::states;
+use crate::variables::linear::{differentiable, states};
 use crate::variables::{Accessor, Causality, Initial, VarType, Variable, VariableTable};
 use crate::xml::{
     common_attributes, default_experiment, real, unit_definitions, used_units, Meta,
@@ -84,7 +84,7 @@ fn dependencies3(table: &VariableTable, st: Option<&States3>, v: &Var3) -> io::R
         return Ok(String::new());
     };
     let f = first(table, v)?;
-    if matches!(f.accessor, Accessor::Work | Accessor::ConstraintResidual) {
+    if !differentiable(table, f.accessor) {
         return Ok(String::new());
     }
     let mut deps: Vec<u32> = st.q.iter().chain(&st.qd).copied().collect();

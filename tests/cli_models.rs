@@ -28,7 +28,7 @@ fn file_folder_and_shipped_name_are_the_same_model() {
     for out in &outs {
         let mut lines = out.lines();
         assert!(lines.next().unwrap().ends_with(": ok"));
-        assert_eq!(lines.next().unwrap(), "model FourBar: 3 bodies, 4 joints (1 loop-closing), 1 input, 71 outputs, 55 parameters");
+        assert_eq!(lines.next().unwrap(), "model FourBar: 3 bodies, 4 joints (1 loop-closing), 1 input, 74 outputs, 55 parameters");
         assert!(out.contains("note: joint 'coupler_rocker'"), "{out}");
     }
     assert_eq!(

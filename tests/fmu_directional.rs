@@ -1,6 +1,7 @@
 //! `fmi2GetDirectionalDerivative` and `fmi3GetDirectionalDerivative`/`AdjointDerivative`:
 //! against `triad linearize`'s model at the same state, against finite differences through
-//! the FMU (inputs, and the initial coordinates as parameters), and bad calls refused.
+//! the FMU (inputs, and the initial coordinates as parameters), and bad calls refused (closed
+//! loops and couplings: `fmu_directional_loops.rs`).
 
 // index loops over a Jacobian's rows and columns read closer to the formulas
 #![allow(clippy::needless_range_loop)]
@@ -179,17 +180,7 @@ fn bad_calls_are_refused_and_change_nothing() {
     // the instance goes on
     assert_eq!(f.step(0.2, 0.01), fmi2OK);
     assert_eq!(dd(&f, &derivs, &states[..1], &[1.0]).0, fmi2OK);
-    // a model with a loop provides none
-    let fb = shipped("four_bar");
-    assert!(triad::variables::linear::states(&fb.table).is_none());
-    let h = Fmu::initialised(&fb);
-    let o = fb.vrs(Causality::Output);
-    assert_eq!(dd(&h, &o[..1], &[], &[]).0, fmi2Error);
-    assert!(
-        h.last_message().contains("closes a kinematic loop"),
-        "{}",
-        h.last_message()
-    );
+    // models with closed loops and couplings: tests/fmu_directional_loops.rs
     // every output the table maps to a quantity can be asked for
     assert!(quantity(m.table.by_name("system.energy").unwrap().accessor).is_some());
 }

@@ -1,49 +1,144 @@
 //! Directional derivatives (FMI 2.0.4 §2.1.9, FMI 3.0 §3.2.3 directional and adjoint) at the
-//! current communication point, exact: `mechanics::TreeDynamics::directional`, one forward
-//! pass of dual numbers per call (adjoint: one per known element).
+//! current communication point, exact: `mechanics::Operating::directional`, one forward pass
+//! of dual numbers per call (adjoint: one per known element).
 //!
 //! Knowns are the states (`joint.J.q`, `joint.J.qd` of `variables::linear::States`) and the
 //! inputs; unknowns are outputs that can be differentiated (`joint.J.qd` and `joint.J.qdd` are
-//! the state derivatives). The other coordinates (spherical joints, a floating base) are held
-//! at their values. Models with closed loops are refused (`mechanics::supported`): their
-//! declared states are every tree joint's, which the loops do not leave independent;
-//! `triad linearize` linearises them in independent coordinates.
+//! the state derivatives). In a tree the other coordinates (spherical joints, a floating base)
+//! are held at their values.
+//!
+//! Closed loops and couplings: the states are the independent coordinates `triad linearize`
+//! picks by default at the model's initial state (`VariableTable::loops`, decided when the
+//! table is built); the other tree joints follow them around the loops (their `joint.J.q`,
+//! `qd`, `qdd` are outputs with derivatives, rows of `C`, `D`), and cannot be knowns. At each
+//! call triad's pick at the current point must be the declared one, so that the values are
+//! `triad linearize`'s `A, B, C, D` there; where it is not (near a singular configuration of
+//! the loop) the call is refused. Loop-closing joints' coordinates and rates have no
+//! derivatives.
 
 use super::instance::{Instance, Op};
 use super::params::Base;
 use super::status::{FmuError, Status};
-use crate::mechanics::Quantity;
-use crate::variables::linear::{quantity, states, States};
+use crate::mechanics::{Coord, Operating, Quantity};
+use crate::variables::linear::{differentiable, quantity, states, States};
 use crate::variables::{Accessor, Causality, Variable};
 
 impl Instance {
     /// The states this instance declares, or why it provides no directional derivatives.
     fn declared_states(&self) -> Result<States, FmuError> {
-        if let Err(e) = crate::mechanics::supported(&self.def) {
+        if let Err(e) = crate::mechanics::linearizable(&self.def) {
             return Err(FmuError::rejected(format!(
                 "this model provides no directional derivatives: {e}"
             )));
         }
         states(&self.table).ok_or_else(|| {
-            FmuError::rejected("this model provides no directional derivatives (no joint coordinates to be states, or too many for the description's dependencies)")
+            FmuError::rejected(if crate::mechanics::supported(&self.def).is_err() {
+                "this model provides no directional derivatives (its closed loops or couplings \
+                 could not be split into independent joint coordinates at the initial state)"
+            } else {
+                "this model provides no directional derivatives (no joint coordinates to be states, or too many for the description's dependencies)"
+            })
         })
     }
 
-    /// The seed slot of a known: `(0, i)` coordinate, `(1, i)` rate, `(2, i)` input.
+    /// The name of tree coordinate `c`, for messages.
+    fn coord_name(&self, c: Coord) -> String {
+        match c {
+            Coord::Joint { joint, k } => {
+                let j = &self.def.joints[joint];
+                if j.kind.dof() == 1 {
+                    format!("joint.{}.q", j.name)
+                } else {
+                    format!("joint.{}.q[{}]", j.name, k + 1)
+                }
+            }
+            Coord::Free { body, i } => {
+                format!("body {} coordinate {}", self.def.bodies[body].name, i + 1)
+            }
+        }
+    }
+
+    /// With closed loops or couplings: the declared states must be the independent
+    /// coordinates triad picks at `op` (module docs), else why not.
+    fn check_pick(&self, op: &Operating) -> Result<(), FmuError> {
+        let Some(loops) = &self.table.loops else {
+            return Ok(());
+        };
+        let declared: Vec<Coord> = loops
+            .independent
+            .iter()
+            .map(|&(joint, k)| Coord::Joint { joint, k })
+            .collect();
+        let here = op.independent().unwrap_or_default();
+        if here == declared {
+            return Ok(());
+        }
+        let names = |cs: &[Coord]| {
+            cs.iter()
+                .map(|&c| self.coord_name(c))
+                .collect::<Vec<_>>()
+                .join(", ")
+        };
+        Err(FmuError::rejected(format!(
+            "no directional derivatives at this point: the independent coordinates triad picks \
+             here ({}) are not the declared states ({}), picked at the initial state; the loops \
+             are near a singular configuration for the declared ones (`triad linearize \
+             --coordinates` linearises in others)",
+            names(&here),
+            names(&declared)
+        )))
+    }
+
+    /// The position of a known in the seed `(δx, δu)`: `(false, i)` state `i` of
+    /// `Operating::x` (coordinates, then rates), `(true, i)` input `i`; or why it is no known.
     fn known_slot(
         &self,
         v: &Variable,
         st: &States,
-        at: &dyn Fn(usize) -> Option<usize>,
-    ) -> Option<(u8, usize)> {
+        op: &Operating,
+    ) -> Result<(bool, usize), FmuError> {
         let index = self.index.get(&v.vr).copied();
         let declared = |list: &[usize]| index.is_some_and(|i| list.contains(&i));
-        match v.accessor {
-            Accessor::Input(i) => Some((2, i)),
-            Accessor::JointQ { joint, k } if declared(&st.q) => at(joint).map(|a| (0, a + k)),
-            Accessor::JointQd { joint, k } if declared(&st.qd) => at(joint).map(|a| (1, a + k)),
+        // the position of tree coordinate `joint`, `k` among the state's coordinates
+        let position = |joint: usize, k: usize| -> Option<usize> {
+            let i = op.dynamics.joint_at(joint)? + k;
+            match &op.loops {
+                Some(cl) => cl.indep.iter().position(|&c| c == i),
+                None => Some(i),
+            }
+        };
+        let nx = op.x().len() / 2;
+        let slot = match v.accessor {
+            Accessor::Input(i) => Some((true, i)),
+            Accessor::JointQ { joint, k } if declared(&st.q) => {
+                position(joint, k).map(|a| (false, a))
+            }
+            Accessor::JointQd { joint, k } if declared(&st.qd) => {
+                position(joint, k).map(|a| (false, nx + a))
+            }
             _ => None,
+        };
+        if let Some(slot) = slot {
+            return Ok(slot);
         }
+        let dependent = matches!(
+            v.accessor,
+            Accessor::JointQ { joint, .. } | Accessor::JointQd { joint, .. }
+                if self.table.loops.as_ref().is_some_and(|l| !l.closing.contains(&joint))
+        );
+        Err(FmuError::rejected(if dependent {
+            format!(
+                "value reference {} ({}) is a dependent joint's: it follows the states around the \
+                 closed loops and couplings, so it is no state and cannot be a known (the states \
+                 are the declared derivatives' <Derivatives> joints)",
+                v.vr, v.name
+            )
+        } else {
+            format!(
+                "value reference {} ({}) is neither a state nor an input: it cannot be a known",
+                v.vr, v.name
+            )
+        }))
     }
 
     /// `C δx + D δu` for the table variables `unknowns` along `seed` over `knowns`.
@@ -66,26 +161,27 @@ impl Instance {
             ));
         };
         let op = sim.operating().map_err(FmuError::rejected)?;
-        let n = op.q.len();
-        let at = |j: usize| op.dynamics.joint_at(j);
-        let (mut dq, mut dnu, mut du) = (vec![0.0; n], vec![0.0; n], vec![0.0; op.u.len()]);
+        self.check_pick(&op)?;
+        let (mut dx, mut du) = (vec![0.0; op.x().len()], vec![0.0; op.u.len()]);
         for (v, &s) in knowns.iter().zip(seed) {
-            match self.known_slot(v, &st, &at) {
-                Some((0, i)) => dq[i] += s,
-                Some((1, i)) => dnu[i] += s,
-                Some((_, i)) => du[i] += s,
-                None => {
-                    return Err(FmuError::rejected(format!(
-                    "value reference {} ({}) is neither a state nor an input: it cannot be a known",
-                    v.vr, v.name
-                )))
-                }
+            match self.known_slot(v, &st, &op)? {
+                (false, i) => dx[i] += s,
+                (true, i) => du[i] += s,
             }
         }
         let mut ys: Vec<Quantity> = Vec::with_capacity(unknowns.len());
         for v in unknowns {
             match (v.causality, quantity(v.accessor)) {
-                (Causality::Output, Some(q)) => ys.push(q),
+                (Causality::Output, Some(q)) if differentiable(&self.table, v.accessor) => {
+                    ys.push(q);
+                }
+                (Causality::Output, Some(_)) => {
+                    return Err(FmuError::rejected(format!(
+                        "value reference {} ({}) is a loop-closing joint's, no coordinate of the \
+                         tree: it has no directional derivatives",
+                        v.vr, v.name
+                    )))
+                }
                 _ => {
                     return Err(FmuError::rejected(format!(
                         "value reference {} ({}) is not an output or state derivative that can be differentiated",
@@ -94,9 +190,7 @@ impl Instance {
                 }
             }
         }
-        op.dynamics
-            .directional(&op.q, &op.nu, &op.u, &dq, &dnu, &du, &ys)
-            .map_err(FmuError::rejected)
+        op.directional(&dx, &du, &ys).map_err(FmuError::rejected)
     }
 
     /// `fmi2GetDirectionalDerivative`: `out[i] = Σ_j ∂unknown_i/∂known_j · seed_j`.

@@ -22,8 +22,10 @@ pub struct States {
 }
 
 /// The states a model declares: the joints with accelerations `joint.J.qdd` (in the table of
-/// trees without contact: every joint but spherical and fixed ones), within
-/// [`MAX_DEPENDENCY_ENTRIES`]; `None` otherwise (then no directional derivatives either).
+/// models without contact or joint friction: every joint but spherical, fixed and
+/// loop-closing ones), with closed loops or couplings only the independent coordinates of
+/// `VariableTable::loops`, within [`MAX_DEPENDENCY_ENTRIES`]; `None` otherwise (then no
+/// directional derivatives either).
 #[must_use]
 pub fn states(table: &VariableTable) -> Option<States> {
     let find = |want: Accessor| table.vars.iter().position(|v| v.accessor == want);
@@ -32,8 +34,17 @@ pub fn states(table: &VariableTable) -> Option<States> {
         qd: Vec::new(),
         qdd: Vec::new(),
     };
+    let is_state = |joint: usize, k: usize| {
+        table
+            .loops
+            .as_ref()
+            .is_none_or(|l| l.independent.contains(&(joint, k)))
+    };
     for (i, v) in table.vars.iter().enumerate() {
         if let Accessor::JointQdd { joint, k } = v.accessor {
+            if !is_state(joint, k) {
+                continue;
+            }
             st.q.push(find(Accessor::JointQ { joint, k })?);
             st.qd.push(find(Accessor::JointQd { joint, k })?);
             st.qdd.push(i);
@@ -41,6 +52,18 @@ pub fn states(table: &VariableTable) -> Option<States> {
     }
     let outputs = table.with_causality(Causality::Output).count();
     (!st.q.is_empty() && outputs * 2 * st.q.len() <= MAX_DEPENDENCY_ENTRIES).then_some(st)
+}
+
+/// Whether output `acc` of `table`'s model has directional derivatives when the model declares
+/// states: a [`quantity`], but not the coordinate or rate of a loop-closing joint (no
+/// coordinate of the tree: `LoopStates::closing`).
+#[must_use]
+pub fn differentiable(table: &VariableTable, acc: Accessor) -> bool {
+    let closing = |j: usize| table.loops.as_ref().is_some_and(|l| l.closing.contains(&j));
+    match acc {
+        Accessor::JointQ { joint, .. } | Accessor::JointQd { joint, .. } if closing(joint) => false,
+        _ => quantity(acc).is_some(),
+    }
 }
 
 /// The differentiable quantity behind an output accessor, if it is one (pose, twist, joint

@@ -2,8 +2,8 @@
 
 use super::builder::{coord_words, coords, index, Builder, Coord, XYZ};
 use super::params::parameters;
-use super::types::{Accessor, VariableTable};
-use crate::mechanics::{ActuatorLaw, JointType, ModelDef, SolverSettings};
+use super::types::{Accessor, LoopStates, VariableTable};
+use crate::mechanics::{ActuatorLaw, Coord as MechCoord, JointType, ModelDef, SolverSettings};
 
 impl VariableTable {
     /// Builds the table of a model definition (names from `def`), parameters starting at the
@@ -321,21 +321,30 @@ fn outputs(b: &mut Builder, def: &ModelDef) {
 /// factors the `n × n` mass matrix (O(n³): 1 ms at 200).
 pub const MAX_ACCELERATION_COORDS: usize = 200;
 
-/// The joint accelerations `joint.J.qdd` of a tree without contact (not of spherical joints)
-/// of at most [`MAX_ACCELERATION_COORDS`] coordinates, last in the table so that every other
-/// value reference is as it was without them.
-fn accelerations(b: &mut Builder, def: &ModelDef) {
+/// The joint accelerations `joint.J.qdd` of a model without contact or joint friction (not of
+/// spherical or loop-closing joints) of at most [`MAX_ACCELERATION_COORDS`] coordinates, last
+/// in the table so that every other value reference is as it was without them. With closed
+/// loops or couplings, also the states: the independent coordinates `triad linearize` picks at
+/// the initial state (`Operating::initial_independent`, [`loop_states`]); without them (the
+/// loops cannot be split there, or a spherical joint or free body is independent) neither
+/// accelerations nor states.
+fn accelerations(b: &mut Builder, def: &ModelDef, settings: &SolverSettings) -> Option<LoopStates> {
     let n_coords = def
         .joints
         .iter()
         .map(|j| j.kind.dof())
         .chain(def.free_bodies.iter().map(|_| 6))
         .sum::<usize>();
-    if crate::mechanics::supported(def).is_err() || n_coords > MAX_ACCELERATION_COORDS {
-        return;
+    if crate::mechanics::linearizable(def).is_err() || n_coords > MAX_ACCELERATION_COORDS {
+        return None;
     }
+    let loops = if crate::mechanics::supported(def).is_err() {
+        Some(loop_states(def, settings)?)
+    } else {
+        None
+    };
     for (joint, j) in def.joints.iter().enumerate() {
-        if j.kind == JointType::Spherical {
+        if j.kind == JointType::Spherical || j.loop_closing {
             continue;
         }
         let n = &j.name;
@@ -353,6 +362,38 @@ fn accelerations(b: &mut Builder, def: &ModelDef) {
             );
         }
     }
+    loops
+}
+
+/// The states of a model with closed loops or couplings (`LoopStates`): the independent
+/// coordinates of `Operating::initial_independent` (the choice `triad linearize` makes by
+/// default at the initial state), when each is a coordinate of a joint that is not spherical
+/// and every coordinate of such a joint is independent (an FMI 3 array is one state).
+fn loop_states(def: &ModelDef, settings: &SolverSettings) -> Option<LoopStates> {
+    let picked = crate::mechanics::Operating::initial_independent(def, *settings).ok()??;
+    let independent = picked
+        .iter()
+        .map(|c| match *c {
+            MechCoord::Joint { joint, k } if def.joints[joint].kind != JointType::Spherical => {
+                Some((joint, k))
+            }
+            _ => None,
+        })
+        .collect::<Option<Vec<(usize, usize)>>>()?;
+    // a joint's coordinates are states together (an FMI 3 array is one variable)
+    let whole = independent
+        .iter()
+        .all(|&(j, _)| (0..def.joints[j].kind.dof()).all(|k| independent.contains(&(j, k))));
+    if !whole {
+        return None;
+    }
+    let closing = (0..def.joints.len())
+        .filter(|&j| def.joints[j].loop_closing)
+        .collect();
+    Some(LoopStates {
+        independent,
+        closing,
+    })
 }
 
 /// Builds the table: inputs, outputs, parameters, joint accelerations (see
@@ -362,6 +403,9 @@ pub(super) fn build(def: &ModelDef, settings: &SolverSettings) -> VariableTable 
     inputs(&mut b, def);
     outputs(&mut b, def);
     parameters(&mut b, def, settings);
-    accelerations(&mut b, def);
-    VariableTable { vars: b.vars }
+    let loops = accelerations(&mut b, def, settings);
+    VariableTable {
+        vars: b.vars,
+        loops,
+    }
 }

@@ -252,6 +252,22 @@ pub struct Variable {
 pub struct VariableTable {
     /// Variables in ModelVariables order.
     pub vars: Vec<Variable>,
+    /// A model with closed loops or couplings whose linear model the FMU provides: its states
+    /// (decided when the table is built); `None` for a tree (or without a linear model).
+    pub loops: Option<LoopStates>,
+}
+
+/// The states of a model with closed loops or couplings: the independent coordinates that
+/// `triad linearize` picks by default (`mechanics::Independent::Auto`) at the model's initial
+/// state; the other tree joints follow them around the loops and couplings.
+#[derive(Clone, Debug, Default, PartialEq, Eq)]
+pub struct LoopStates {
+    /// The independent coordinates `(joint, k)` (joint index, coordinate of the joint), in
+    /// the tree's coordinate order: their `joint.J.q`, `joint.J.qd` are the states.
+    pub independent: Vec<(usize, usize)>,
+    /// The loop-closing joints: their `joint.J.q`, `joint.J.qd` are no coordinates of the
+    /// tree, and are not differentiated.
+    pub closing: Vec<usize>,
 }
 
 impl Causality {

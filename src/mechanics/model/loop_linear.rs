@@ -109,8 +109,46 @@ impl Closure {
         Ok(out)
     }
 
+    /// Along the direction `(δq_I, δν_I, δu)` at the tree point `(q, ν)` on the loops with
+    /// inputs `u`: `(δẋ, δy) = (A δx + B δu, C δx + D δu)` for the outputs `ys` (one dual pass:
+    /// complete, then the KKT solve; module formulas).
+    ///
+    /// # Errors
+    /// A singular constrained system, or a loop that does not close.
+    #[allow(clippy::too_many_arguments)]
+    pub fn directional(
+        &self,
+        td: &TreeDynamics,
+        q: &[f64],
+        nu: &[f64],
+        u: &[f64],
+        (dqi, dvi, du): (&[f64], &[f64], &[f64]),
+        ys: &[Quantity],
+    ) -> Result<(Vec<f64>, Vec<f64>), String> {
+        let dual = |x: &[f64], d: &[f64]| -> Vec<Dual64> {
+            x.iter().zip(d).map(|(&a, &b)| Dual64::new(a, b)).collect()
+        };
+        let (qi, vi) = (self.pick(q), self.pick(nu));
+        let (qd, vd, ud) = (dual(&qi, dqi), dual(&vi, dvi), dual(u, du));
+        let (qt, vt) = self.complete(td, q, &qd, &vd)?;
+        let nud = self.accelerations(td, &qt, &vt, &ud)?;
+        let qdot = td.qdot(&qt, &vt);
+        let dx: Vec<f64> = self
+            .pick(&qdot)
+            .iter()
+            .chain(&self.pick(&nud))
+            .map(|x: &Dual64| x.eps)
+            .collect();
+        let dy: Vec<f64> = ys
+            .iter()
+            .map(|y| td.quantity(&qt, &vt, &nud, *y).eps)
+            .collect();
+        Ok((dx, dy))
+    }
+
     /// The exact linear model in `x = (q_I, ν_I)` at the tree point `(q, ν)` on the loops with
-    /// inputs `u` and outputs `ys` (module formulas).
+    /// inputs `u` and outputs `ys` (module formulas): [`Closure::directional`] along each unit
+    /// direction.
     ///
     /// # Errors
     /// A singular constrained system, or a loop that does not close.
@@ -123,28 +161,20 @@ impl Closure {
         ys: &[Quantity],
     ) -> Result<Linear, String> {
         let (k, m, p) = (self.indep.len(), td.n_inputs(), ys.len());
-        let (qi, vi) = (self.pick(q), self.pick(nu));
         let mut a = DMatrix::zeros(2 * k, 2 * k);
         let mut b = DMatrix::zeros(2 * k, m);
         let mut cm = DMatrix::zeros(p, 2 * k);
         let mut d = DMatrix::zeros(p, m);
+        let unit = |len: usize, at: Option<usize>| -> Vec<f64> {
+            (0..len)
+                .map(|i| f64::from(u8::from(Some(i) == at)))
+                .collect()
+        };
         for col in 0..2 * k + m {
-            let qd = lift(&qi, (col < k).then_some(col));
-            let vd = lift(&vi, (k..2 * k).contains(&col).then(|| col - k));
-            let ud = lift(u, (col >= 2 * k).then(|| col - 2 * k));
-            let (qt, vt) = self.complete(td, q, &qd, &vd)?;
-            let nud = self.accelerations(td, &qt, &vt, &ud)?;
-            let qdot = td.qdot(&qt, &vt);
-            let column: Vec<f64> = self
-                .pick(&qdot)
-                .iter()
-                .chain(&self.pick(&nud))
-                .map(|x: &Dual64| x.eps)
-                .collect();
-            let ycol: Vec<f64> = ys
-                .iter()
-                .map(|y| td.quantity(&qt, &vt, &nud, *y).eps)
-                .collect();
+            let dqi = unit(k, (col < k).then_some(col));
+            let dvi = unit(k, (k..2 * k).contains(&col).then(|| col - k));
+            let du = unit(m, (col >= 2 * k).then(|| col - 2 * k));
+            let (column, ycol) = self.directional(td, q, nu, u, (&dqi, &dvi, &du), ys)?;
             if col < 2 * k {
                 a.set_column(col, &DVector::from_vec(column));
                 cm.set_column(col, &DVector::from_vec(ycol));

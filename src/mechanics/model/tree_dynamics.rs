@@ -206,9 +206,7 @@ impl std::fmt::Display for Unsupported {
 }
 
 /// Whether `def` has a minimal-coordinate dynamics in tree coordinates alone: a tree (no
-/// loop-closing joint) without collision shapes, joint friction or couplings (whose bristles
-/// would be states the FMU does not declare). The FMU's directional derivatives and the
-/// `joint.J.qdd` outputs ask this.
+/// loop-closing joint, no coupling) that [`linearizable`] admits.
 ///
 /// # Errors
 /// [`Unsupported`] naming the first obstacle.
@@ -219,24 +217,23 @@ pub fn supported(def: &ModelDef) -> Result<(), Unsupported> {
     if let Some(c) = def.couplings.first() {
         return Err(Unsupported::Coupling(def.joints[c.b].name.clone()));
     }
+    linearizable(def)
+}
+
+/// Whether `def`'s FMU has linear models (directional derivatives over its declared joint
+/// states, and the `joint.J.qdd` outputs): no collision shapes, no joint friction, whose
+/// bristles would be states the FMU has no variables for; closed loops and couplings in their
+/// independent coordinates. (`triad linearize` takes contact and friction too: `sticking`.)
+///
+/// # Errors
+/// [`Unsupported`] naming the first obstacle.
+pub fn linearizable(def: &ModelDef) -> Result<(), Unsupported> {
     if !def.contact.shapes.is_empty() {
         return Err(Unsupported::Contact);
     }
     if let Some(j) = def.joints.iter().find(|j| j.friction > 0.0) {
         return Err(Unsupported::Friction(j.name.clone()));
     }
-    linearizable(def)
-}
-
-/// Whether `def` has a linear model here (`triad linearize`): every model does, closed loops
-/// in their independent coordinates (`loop_closure`), contact and joint friction through
-/// their sticking bristles (`sticking`); what the operating point allows is checked there.
-///
-/// # Errors
-/// None today; kept for the obstacles a model may bring.
-#[allow(clippy::unnecessary_wraps)]
-pub fn linearizable(def: &ModelDef) -> Result<(), Unsupported> {
-    let _ = def;
     Ok(())
 }
 
@@ -264,8 +261,11 @@ impl TreeDynamics {
     /// operating orientations `joint_rot0` (spherical joints: relative rotation child joint
     /// frame → parent joint frame; others unused) and `body_rot0` (free bodies; others unused).
     ///
+    /// Touching contacts and joint friction come later, at an operating point
+    /// ([`TreeDynamics::set_sticking`]).
+    ///
     /// # Errors
-    /// [`Unsupported`] for contact and joint friction.
+    /// None today (every model has this dynamics); kept for obstacles a model may bring.
     pub fn new(
         model: &Model,
         damping: &[f64],
@@ -274,7 +274,6 @@ impl TreeDynamics {
         body_rot0: Vec<Mat3>,
     ) -> Result<Self, Unsupported> {
         let def: &ModelDef = model.def();
-        linearizable(def)?;
         let nb = def.bodies.len();
         let mut coords = Vec::new();
         let mut parent_of = vec![Parent::Free(0); nb];

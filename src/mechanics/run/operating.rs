@@ -20,7 +20,7 @@
 
 use super::state::State;
 use crate::math::{exp_so3, matrix_to_quat, quat_to_matrix, Mat3, Vec3};
-use crate::mechanics::model::def::{JointInitial, ModelDef};
+use crate::mechanics::model::def::{JointInitial, ModelDef, SolverSettings};
 use crate::mechanics::model::linear::lift;
 use crate::mechanics::model::linear::{Linear, Quantity};
 use crate::mechanics::model::loop_closure::{Closure, Independent};
@@ -259,6 +259,69 @@ impl Operating {
             Some(cl) => cl.linearize(&self.dynamics, &self.q, &self.nu, &self.u, ys),
             None => self.dynamics.linearize(&self.q, &self.nu, &self.u, ys),
         }
+    }
+
+    /// The directional derivative of the outputs `ys` along `(δx, δu)` at this point:
+    /// `C δx + D δu`, `δx` over [`Operating::x`] (one dual pass; with closed loops
+    /// `Closure::directional`, whose unit directions give [`Operating::linearize`]'s columns).
+    ///
+    /// # Errors
+    /// A message when the (constrained) mass matrix is singular or a loop does not close;
+    /// `dx` not as long as [`Operating::x`].
+    pub fn directional(&self, dx: &[f64], du: &[f64], ys: &[Quantity]) -> Result<Vec<f64>, String> {
+        let nx = self.x().len();
+        if dx.len() != nx || du.len() != self.u.len() {
+            return Err(format!(
+                "directional: {} state and {} input directions for {nx} states and {} inputs",
+                dx.len(),
+                du.len(),
+                self.u.len()
+            ));
+        }
+        let (dq, dnu) = dx.split_at(nx / 2);
+        match &self.loops {
+            Some(cl) => Ok(cl
+                .directional(
+                    &self.dynamics,
+                    &self.q,
+                    &self.nu,
+                    &self.u,
+                    (dq, dnu, du),
+                    ys,
+                )?
+                .1),
+            None => self
+                .dynamics
+                .directional(&self.q, &self.nu, &self.u, dq, dnu, du, ys),
+        }
+    }
+
+    /// With closed loops or couplings, the tree coordinates that are the state's independent
+    /// ones (`Closure::indep`, ascending); `None` for a tree.
+    #[must_use]
+    pub fn independent(&self) -> Option<Vec<Coord>> {
+        let coords = self.dynamics.coords();
+        self.loops
+            .as_ref()
+            .map(|cl| cl.indep.iter().map(|&i| coords[i]).collect())
+    }
+
+    /// The independent coordinates `triad linearize` picks by default
+    /// ([`Independent::Auto`]) at the initial state of `def` with `settings` (the state a
+    /// simulation starts from: `Model::new`, `State::new`, [`Operating::of`]); `None` for a
+    /// tree. The FMU of a model with closed loops or couplings declares these as its states.
+    ///
+    /// # Errors
+    /// The model is invalid, has no linear model (contact, joint friction), or its loops
+    /// cannot be split at the initial state.
+    pub fn initial_independent(
+        def: &ModelDef,
+        settings: SolverSettings,
+    ) -> Result<Option<Vec<Coord>>, String> {
+        let model = Model::new(def, settings).map_err(|e| e.to_string())?;
+        let state = State::new(&model);
+        let op = Self::of(&model, &state).map_err(|e| e.to_string())?;
+        Ok(op.independent())
     }
 
     /// Whether output `y` can be differentiated here: not the joint values of loop-closing

@@ -41,7 +41,7 @@
 //!
 //! Cost per stage: two factorisations of the Newton matrix, one of the swapped one's assembly,
 //! `2 nᵤ` residual evaluations and one back-substitution per column, each O(N) on a tree.
-//! Contacts are not covered (`tree_dynamics::linearizable` refuses them before a tangent
+//! Contacts and joint friction are not covered (`run::step_map` refuses them before a tangent
 //! exists). Loop-closing joints are: their rows' right-hand sides go to the border of the
 //! bordered solve and its off-tree couplings `X` join the products with the assembled matrix
 //! (`linalg::border`).
