@@ -3,7 +3,8 @@
 //! identical by construction.
 //!
 //! The sub-steps of a communication step are equal: `ceil(H / max_step)` of them with fixed
-//! steps (`solver.rtol = 0`), or, with error control, `ceil(r / h)` for the span `r` still to
+//! steps (`solver.rtol = 0`; one whose Newton iteration fails, an impact too hard for it, is
+//! retaken as two halves, each likewise, down to 1/16, [`SPLITS`]), or, with error control, `ceil(r / h)` for the span `r` still to
 //! go and the controller's proposal `h` (recomputed after every step, see
 //! `mechanics::run::control`), so the last one ends exactly on the communication point and a
 //! steady proposal gives equal steps. A step that would cross a joint limit (enter or leave a
@@ -35,6 +36,29 @@ use crate::mechanics::{
     StepError, StepMap, Verdict,
 };
 use thiserror::Error;
+
+/// How many times a fixed sub-step whose Newton iteration fails is halved before the
+/// communication step fails (module docs): down to 1/16 of `max_step`.
+pub const SPLITS: u32 = 4;
+
+/// A fixed sub-step of size `dt` ([`step_state`]); where Newton fails (no convergence, a
+/// singular matrix) it is retaken as two halves, each likewise, `depth` times. Each step taken
+/// is an energy–momentum step. On error the state may have moved by earlier halves (the caller
+/// rolls back).
+fn step_split(model: &Model, state: &mut State, dt: f64, depth: u32) -> Result<(), StepError> {
+    match step_state(model, state, dt) {
+        Ok(_) => Ok(()),
+        Err(
+            StepError::NoConvergence { .. }
+            | StepError::Singular
+            | StepError::NearlyUndetermined { .. },
+        ) if depth > 0 => {
+            step_split(model, state, 0.5 * dt, depth - 1)?;
+            step_split(model, state, 0.5 * dt, depth - 1)
+        }
+        Err(e) => Err(e),
+    }
+}
 
 /// The width of the time bracket an early return's event search ends at, s (module docs of
 /// [`Simulation::advance_early`]).
@@ -495,7 +519,7 @@ impl Simulation {
             if early {
                 self.sub.copy_values_from(&self.state);
             }
-            let stepped = step_state(&self.model, &mut self.state, dt).and_then(|_| {
+            let stepped = step_split(&self.model, &mut self.state, dt, SPLITS).and_then(|()| {
                 if early {
                     self.land_on_event(dt)
                 } else {
