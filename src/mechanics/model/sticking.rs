@@ -34,7 +34,7 @@ use super::contact_law::YIELD;
 use super::def::{ContactLaw, ModelDef};
 use super::joint_friction::{JointFriction, TIME_CONSTANT};
 use super::runtime::Model;
-use super::tree_dynamics::{c, Motion, Real, TreeDynamics, Unsupported};
+use super::tree_dynamics::{c, mv, Motion, Real, TreeDynamics, Unsupported};
 use crate::math::Vec3;
 use nalgebra::Vector3;
 
@@ -268,7 +268,7 @@ impl Sticking {
     ) -> (Vector3<T>, T, Vector3<T>, Vector3<T>) {
         let n = cv::<T>(&self.normal);
         let (k, d) = (c::<T>(t.law.stiffness), c::<T>(t.law.damping));
-        let arm = m.r[t.body] * cv::<T>(&(td.body_com(t.body) + t.x));
+        let arm = mv(&m.r[t.body], &cv::<T>(&(td.body_com(t.body) + t.x)));
         let p = m.o[t.body] + arm;
         let pdot = m.v[t.body] + m.w[t.body].cross(&arm);
         let x = c::<T>(self.height + t.radius) - n.dot(&p);
@@ -300,7 +300,7 @@ impl Sticking {
             let (arm, f, fr, carm) = self.point_loads(td, m, sigma, t);
             let b = t.body;
             // arms from the frame origin less the centre of mass's: R X, R X − r n
-            let rc = m.r[b] * cv::<T>(&td.body_com(b));
+            let rc = mv(&m.r[b], &cv::<T>(&td.body_com(b)));
             fe[b] += n * f + fr;
             ne[b] += (arm - rc).cross(&(n * f)) + (carm - rc).cross(&fr);
         }
@@ -320,7 +320,8 @@ impl Sticking {
         let n = cv::<T>(&self.normal);
         for t in &self.touches {
             let Some(at) = t.at else { continue };
-            let carm = m.r[t.body] * cv::<T>(&(td.body_com(t.body) + t.x)) - n * c::<T>(t.radius);
+            let carm =
+                mv(&m.r[t.body], &cv::<T>(&(td.body_com(t.body) + t.x))) - n * c::<T>(t.radius);
             let vc = m.v[t.body] + m.w[t.body].cross(&carm);
             for i in 0..2 {
                 out[at + i] = cv::<T>(&self.tangents[i]).dot(&vc);
