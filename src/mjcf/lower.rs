@@ -346,6 +346,7 @@ pub(super) fn spec(m: &Model, origin: &str, problems: &mut Vec<Problem>) -> Lowe
                 lower,
                 upper,
                 effort: None,
+                actuatorfrcrange: j.actuatorfrcrange.filter(|_| movable),
                 stop_stiffness: None,
                 stop_damping: None,
                 initial,
