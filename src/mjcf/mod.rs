@@ -32,11 +32,13 @@
 mod actuator_law;
 mod actuators;
 mod bodies;
+mod body_inertials;
 mod contacts;
 mod defaults;
 mod equality;
 mod frames;
 mod inertia;
+mod joint_spec;
 mod keyframe;
 mod lower;
 mod model;
