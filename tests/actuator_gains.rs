@@ -238,3 +238,29 @@ fn tunable_through_the_fmu_refused_out_of_range_and_restored() {
     assert_eq!(f.get_real(&[m.vr("actuator.p_rail.kp")]).1, at_save.1);
     assert_eq!(unsafe { fmi2FreeFMUstate(f.c, &mut saved) }, fmi2OK);
 }
+
+/// The linear models read the state's gains: a position servo on a free rotor, kp and kv set
+/// on the state, gives `A = [[0, 1], [−g² kp / I, −g² kv / I]]`, `B = [0, g kp / I]` with the
+/// new gains, to round-off.
+#[test]
+fn the_linear_model_uses_the_tuned_gains() {
+    let text = "name = \"Servo\"\ngravity = [0.0, 0.0, 0.0]\n[[body]]\nname = \"r\"\nmass = 1.0\n\
+                inertia = [0.5, 0.5, 0.5]\n[[joint]]\nname = \"spin\"\ntype = \"revolute\"\nparent = \"world\"\n\
+                child = \"r\"\naxis = [0.0, 0.0, 1.0]\n[[actuator]]\nname = \"a\"\njoint = \"spin\"\n\
+                kind = \"position\"\ngear = 2.0\nkp = 30.0\nkv = 4.0\n";
+    let (m, mut s) = spec_model(text);
+    let (g, kp, kv, i) = (2.0, 55.0, 1.5, 0.5);
+    s.set_gain(0, 0, kp);
+    s.set_gain(0, 1, kv);
+    let lin = triad::mechanics::Operating::of(&m, &s)
+        .unwrap()
+        .linearize(&[])
+        .unwrap();
+    let want_a = [[0.0, 1.0], [-g * g * kp / i, -g * g * kv / i]];
+    for (r, row) in want_a.iter().enumerate() {
+        for (c, want) in row.iter().enumerate() {
+            assert!((lin.a[(r, c)] - want).abs() < 1e-12, "A {r} {c}: {}", lin.a);
+        }
+    }
+    assert!((lin.b[(1, 0)] - g * kp / i).abs() < 1e-12, "B {}", lin.b);
+}
