@@ -320,3 +320,57 @@ fn the_spec_refuses_bad_actuators_by_path() {
         problems("[[actuator]]\nname = \"a\"\njoint = \"hinge\"\nkind = \"velocity\"\nkv = 2.0\n");
     assert!(ok.is_empty(), "{ok:?}");
 }
+
+/// A joint's `actuatorfrcrange` clamps the sum of its actuators' generalised forces (MuJoCo's
+/// joint-level clamp), not each one: a rotor driven by two motors whose sum, 2·0.6 + 1·0.5 =
+/// 1.7 N·m, exceeds the range's 0.8 moves as one motor of 0.8 N·m to round-off, with `E − W` at
+/// round-off; inside the range the two add. The joint's own input is not in the sum.
+#[test]
+fn a_joint_range_clamps_the_summed_actuator_force() {
+    let rotor = |range: &str, actuators: &str| {
+        format!(
+            "name = \"Rotor\"\ngravity = [0.0, 0.0, 0.0]\n[[body]]\nname = \"r\"\nmass = 1.0\n\
+             inertia = [0.5, 0.5, 0.5]\n[[joint]]\nname = \"spin\"\ntype = \"revolute\"\nparent = \"world\"\n\
+             child = \"r\"\naxis = [0.0, 0.0, 1.0]\nactuated = true\n{range}\n{actuators}"
+        )
+    };
+    let two = "[[actuator]]\nname = \"a\"\njoint = \"spin\"\nkind = \"motor\"\ngear = 2.0\n\
+               [[actuator]]\nname = \"b\"\njoint = \"spin\"\nkind = \"motor\"\n";
+    let one = "[[actuator]]\nname = \"a\"\njoint = \"spin\"\nkind = \"motor\"\n";
+    let run = |text: &str, u: &[f64]| {
+        let (m, mut s) = spec_model(text);
+        s.inputs_mut().copy_from_slice(u);
+        for _ in 0..20 {
+            step(&m, &mut s, 0.05).unwrap();
+        }
+        let o = s.outputs();
+        assert!((o.work - o.energy).abs() < 1e-14 * o.energy.max(1.0));
+        o.joints[0].q[0]
+    };
+    let clamped = rotor("actuatorfrcrange = [-0.3, 0.8]", two);
+    for (u, same) in [
+        ([0.0, 0.6, 0.5], [0.0, 0.8]),   // 1.7 beyond 0.8
+        ([0.0, -0.6, 0.5], [0.0, -0.3]), // −0.7 beyond −0.3
+        ([0.0, 0.2, -0.1], [0.0, 0.3]),  // 0.3 inside
+        ([0.5, 0.6, 0.5], [0.5, 0.8]),   // the joint's own 0.5 N·m on top
+    ] {
+        let (q, want) = (run(&clamped, &u), run(&rotor("", one), &same));
+        assert!((q - want).abs() < 1e-13, "{u:?}: {q} vs {want}");
+    }
+    // refused where it cannot act, and when empty
+    for (range, kind, why) in [
+        ("[0.5, -0.5]", "revolute", "finite lo < hi"),
+        ("[-1.0, 1.0]", "spherical", "revolute and prismatic"),
+    ] {
+        let text = rotor(&format!("actuatorfrcrange = {range}"), "")
+            .replace("type = \"revolute\"", &format!("type = \"{kind}\""))
+            .replace("actuated = true\n", "");
+        let e = Spec::from_str(&text, Format::Toml, "a.toml")
+            .unwrap_err()
+            .to_string();
+        assert!(
+            e.contains("a.toml: joint[0].actuatorfrcrange") && e.contains(why),
+            "{e}"
+        );
+    }
+}

@@ -139,7 +139,9 @@ pub enum Command {
     /// classes, includes, keyframes (--keyframe), geoms as collision shapes touching the
     /// world's plane (unless --no-contacts), connect and weld equalities as loop-closing
     /// joints, motor, position and velocity actuators on hinges and slides as [[actuator]]
-    /// (the input actuator.A.ctrl, MuJoCo's laws, gear and clamps). Joint coordinates are
+    /// (the input actuator.A.ctrl, MuJoCo's laws, gear and clamps, a joint's
+    /// actuatorfrcrange; the parameters actuator.A.gear, and actuator.A.kp, actuator.A.kv
+    /// tunable between steps). Joint coordinates are
     /// MuJoCo's qpos (angles in the
     /// file's <compiler angle> unit, degrees by default). What is not reproduced is noted in
     /// the output; tendons, muscles, flex, composites and plugins are refused.

@@ -48,8 +48,9 @@ pub struct SimulateArgs {
     /// time, also between communication points).
     #[arg(long, value_name = "IN.csv")]
     pub input: Option<PathBuf>,
-    /// Set a parameter before the run (repeatable), e.g. `joint.elbow.q0=0.3`: any parameter
-    /// of `triad describe`, checked as fmi2SetReal checks it.
+    /// Set a parameter before the run (repeatable), e.g. `joint.elbow.q0=0.3` or
+    /// `actuator.A.kp=50` (an actuator's gear, kp, kv): any parameter of `triad describe`,
+    /// checked as fmi2SetReal checks it.
     #[arg(long = "set", value_name = "NAME=VALUE")]
     pub set: Vec<String>,
     /// Write only the output columns whose names match (repeatable; comma-separated globs with

@@ -287,6 +287,12 @@ impl Instance {
                 (Accessor::Damping(j), Some(sim)) if self.mode == Mode::StepComplete => {
                     sim.state_mut().set_damping(j, value)
                 }
+                (Accessor::ActuatorKp(a), Some(sim)) if self.mode == Mode::StepComplete => {
+                    sim.state_mut().set_gain(a, 0, value)
+                }
+                (Accessor::ActuatorKv(a), Some(sim)) if self.mode == Mode::StepComplete => {
+                    sim.state_mut().set_gain(a, 1, value)
+                }
                 _ => {}
             }
         }

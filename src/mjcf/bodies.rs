@@ -149,6 +149,19 @@ fn joint(a: &Attrs, c: &Compiler) -> Result<Joint, Problem> {
         (true, None) => return Err(a.node.problem("limited=\"true\" needs a range")),
         _ => None,
     };
+    // the clamp of the summed actuator force, as MuJoCo compiles it (in force units: no
+    // angle conversion)
+    let frc = a.numbers("actuatorfrcrange", 2, 2)?;
+    let frc_on = limited(a, "actuatorfrclimited", frc.is_some(), c.autolimits)?;
+    let actuatorfrcrange = match (frc_on, frc) {
+        (true, Some(r)) => Some([r[0], r[1]]),
+        (true, None) => {
+            return Err(a
+                .node
+                .problem("actuatorfrclimited=\"true\" needs an actuatorfrcrange"))
+        }
+        _ => None,
+    };
     Ok(Joint {
         name: a.node.attr("name").map(str::to_string),
         at: a.node.at(),
@@ -162,6 +175,7 @@ fn joint(a: &Attrs, c: &Compiler) -> Result<Joint, Problem> {
         reference: conv(a.number("ref", 0.0)?),
         armature: a.number("armature", 0.0)?,
         frictionloss: a.number("frictionloss", 0.0)?,
+        actuatorfrcrange,
     })
 }
 

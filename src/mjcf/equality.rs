@@ -133,6 +133,7 @@ pub(super) fn equalities(
             lower: None,
             upper: None,
             effort: None,
+            actuatorfrcrange: None,
             stop_stiffness: None,
             stop_damping: None,
             initial: None,

@@ -18,18 +18,19 @@
 //! triad's `q` equals MuJoCo's `qpos` exactly, `ref` included. The bodies between a body's
 //! joints are massless triad bodies (`body_joint`). A body without joints is merged into its
 //! parent's triad body (its inertial added, its frame a site), or welded to the world.
+//!
+//! One joint's spec is `joint_spec`'s, the inertials `body_inertials`'.
 
 use std::collections::HashMap;
 
-use super::model::{FromGeom, JointType, Model, Shape};
+use super::model::{JointType, Model};
+use super::{body_inertials, joint_spec};
 use crate::import::entries::{empty_spec, massless_body};
 use crate::import::frame::Iso;
-use crate::import::inertia::{merge, set_inertial, Part};
+use crate::import::inertia::{set_inertial, Part};
 use crate::import::names::Namer;
-use crate::math::{exp_so3, matrix_to_quat, Mat3, Vec3};
-use crate::spec::{
-    Coords, InitialSpec, JointKind, JointSpec, OrientationSpec, Problem, SiteSpec, Spec,
-};
+use crate::math::matrix_to_quat;
+use crate::spec::{OrientationSpec, Problem, SiteSpec, Spec};
 
 /// What the import produced besides the spec.
 #[derive(Debug, Default)]
@@ -74,57 +75,6 @@ pub(super) enum Slot {
     Joint(usize, JointType),
     /// A free body.
     Free(usize),
-}
-
-/// The MuJoCo body's mass, centre of mass and inertia (body frame), as the compiler makes them.
-fn body_part(m: &Model, i: usize, problems: &mut Vec<Problem>) -> Part {
-    let b = &m.bodies[i];
-    let from_geoms = match m.compiler.from_geom {
-        FromGeom::Always => true,
-        FromGeom::Never => false,
-        FromGeom::Auto => b.inertial.is_none(),
-    };
-    let (mass, com, j) = if from_geoms {
-        let mut parts = Vec::new();
-        for g in &b.geoms {
-            match &g.shape {
-                Shape::Solid(s) => {
-                    let v = s.volume();
-                    let mass = g.mass.unwrap_or(g.density * v);
-                    let j = s.inertia(mass);
-                    parts.push((mass, g.frame.p, g.frame.r * j * g.frame.r.transpose()));
-                }
-                Shape::Plane => problems.push(Problem::new(
-                    g.at.clone(),
-                    "a plane geom belongs in <worldbody> (it has no volume to give a body mass)",
-                )),
-                Shape::Other(kind) if g.mass != Some(0.0) && g.density != 0.0 => {
-                    problems.push(Problem::new(
-                        g.at.clone(),
-                        format!(
-                            "the body's inertia would come from this {kind} geom, which triad cannot compute: give the body an <inertial> (or the geom mass=\"0\")"
-                        ),
-                    ));
-                }
-                Shape::Other(_) => {}
-            }
-        }
-        merge(&parts)
-    } else {
-        b.inertial.map_or((0.0, Vec3::zeros(), Mat3::zeros()), |i| {
-            (i.mass, i.com, i.inertia)
-        })
-    };
-    // the compiler's lower bounds: on the mass, and on the principal moments
-    let mass = mass.max(m.compiler.boundmass);
-    let j = if m.compiler.boundinertia > 0.0 {
-        let e = j.symmetric_eigen();
-        let d = Mat3::from_diagonal(&e.eigenvalues.map(|x| x.max(m.compiler.boundinertia)));
-        e.eigenvectors * d * e.eigenvectors.transpose()
-    } else {
-        j
-    };
-    (mass, com, j)
 }
 
 /// The name of MuJoCo body `i` (its `name`, else `body{i}`).
@@ -264,97 +214,20 @@ pub(super) fn spec(m: &Model, origin: &str, problems: &mut Vec<Problem>) -> Lowe
                 );
                 id
             };
-            let anchor = Iso::shift(j.pos);
-            let (kind, joint_frame) = match j.kind {
-                JointType::Hinge => (
-                    JointKind::Revolute,
-                    m_prev.then(&anchor).then(&Iso {
-                        r: exp_so3(&(j.axis * -j.reference)),
-                        p: Vec3::zeros(),
-                    }),
-                ),
-                JointType::Slide => (
-                    JointKind::Prismatic,
-                    m_prev.then(&Iso::shift(j.pos - j.axis * j.reference)),
-                ),
-                _ => (JointKind::Spherical, m_prev.then(&anchor)),
-            };
-            m_prev = Iso::shift(-j.pos);
             let id = joints.name(&jname);
             let original = j.name.as_deref().unwrap_or("");
             if !original.is_empty() {
                 joint_of.insert(original, spec.joint.len());
             }
-            let movable = kind != JointKind::Spherical;
-            let what = format!("joint '{}'", j.name.as_deref().unwrap_or(&id));
-            // armature and frictionloss are triad's armature and Coulomb friction on hinge and
-            // slide joints; a ball joint's are noted (triad's spherical joints take neither)
-            if !movable && j.armature > 0.0 {
-                out.notes.push(format!("{what}: armature=\"{}\" of a ball joint is not modelled: the joint is lighter than in MuJoCo", j.armature));
-            }
-            if !movable && j.frictionloss > 0.0 {
-                out.notes.push(format!(
-                    "{what}: frictionloss=\"{}\" of a ball joint is not modelled",
-                    j.frictionloss
-                ));
-            }
-            if j.springref != 0.0 && j.stiffness > 0.0 && movable {
-                out.notes.push(format!(
-                    "{what}: the spring acts about q = 0, not about springref = {} (triad's joint spring has no rest position yet)",
-                    j.springref
-                ));
-            }
-            if !movable && j.stiffness > 0.0 {
-                out.notes.push(format!("{what}: stiffness of a ball joint is not modelled (triad's spherical joints take no spring)"));
-            }
-            if !movable && j.range.is_some() {
-                out.notes.push(format!(
-                    "{what}: the cone limit (range) of a ball joint is not modelled"
-                ));
-            }
-            let initial = (j.kind == JointType::Hinge || j.kind == JointType::Slide)
-                .then_some(j.reference)
-                .filter(|r| *r != 0.0)
-                .map(|r| InitialSpec {
-                    q: Some(Coords::Scalar(r)),
-                    ..InitialSpec::default()
-                });
-            let (lower, upper) = match j.range {
-                Some([lo, hi]) if movable && lo < hi => (Some(lo), Some(hi)),
-                Some([lo, hi]) if movable => {
-                    out.notes
-                        .push(format!("{what}: range {lo} {hi} is empty: no stops"));
-                    (None, None)
-                }
-                _ => (None, None),
-            };
-            out.joints.push(j.at.clone());
-            spec.joint.push(JointSpec {
-                name: id.clone(),
-                kind,
+            let ends = joint_spec::Ends {
                 parent: parent.map_or_else(|| "world".to_string(), |p| spec.body[p].name.clone()),
                 child: spec.body[child].name.clone(),
-                origin: joint_frame.origin_spec(),
-                child_origin: None,
-                axis: movable.then_some([j.axis.x, j.axis.y, j.axis.z]),
-                axis2: None,
-                actuated: false,
-                damping: j.damping,
-                stiffness: if movable { j.stiffness } else { 0.0 },
-                armature: if movable { j.armature } else { 0.0 },
-                friction: if movable { j.frictionloss } else { 0.0 },
-                lower,
-                upper,
-                effort: None,
-                stop_stiffness: None,
-                stop_damping: None,
-                initial,
-                description: if j.name.as_deref() == Some(id.as_str()) {
-                    String::new()
-                } else {
-                    format!("MJCF joint \"{}\"", j.name.as_deref().unwrap_or(""))
-                },
-            });
+                frame: m_prev,
+            };
+            let (joint, next) = joint_spec::joint(j, id, ends, &mut out.notes);
+            m_prev = next;
+            out.joints.push(j.at.clone());
+            spec.joint.push(joint);
             slots.push(Slot::Joint(spec.joint.len() - 1, j.kind));
             parent = Some(child);
         }
@@ -367,65 +240,11 @@ pub(super) fn spec(m: &Model, origin: &str, problems: &mut Vec<Problem>) -> Lowe
         out.notes.push("joint ranges are triad's one-sided elastic stops (stop_stiffness 1e4), not MuJoCo's soft limit constraints (solreflimit)".into());
     }
     // the inertials, each in its host's frame; the compiler's total mass
-    let mut own: Vec<Part> = (0..m.bodies.len())
-        .map(|i| {
-            if i == 0 {
-                (0.0, Vec3::zeros(), Mat3::zeros())
-            } else {
-                body_part(m, i, problems)
-            }
-        })
-        .collect();
-    if let Some(total) = m.compiler.settotalmass {
-        let sum: f64 = own.iter().map(|p| p.0).sum();
-        if sum > 0.0 {
-            let s = total / sum;
-            for p in &mut own {
-                p.0 *= s;
-                p.2 *= s;
-            }
-        }
-    }
+    let own = body_inertials::own_parts(m, problems);
     for i in 1..m.bodies.len() {
-        let (mass, com, j) = own[i];
         let h = host[i];
-        match h.body {
-            Some(b) => parts[b].push((
-                mass,
-                h.place.p + h.place.r * com,
-                h.place.r * j * h.place.r.transpose(),
-            )),
-            None if mass > 0.0 => out.notes.push(format!(
-                "body '{}' has no joint: it is welded to the world and its mass does not move",
-                body_name(m, i)
-            )),
-            None => {}
-        }
-        for s in &m.bodies[i].sites {
-            let Some(b) = h.body else {
-                if let Some(n) = &s.name {
-                    out.notes.push(format!(
-                        "site '{n}' is on a body welded to the world: left out"
-                    ));
-                }
-                continue;
-            };
-            let n = s
-                .name
-                .clone()
-                .unwrap_or_else(|| format!("{}_site", body_name(m, i)));
-            let id = sites.name(&n);
-            spec.site.push(SiteSpec {
-                description: if id == n {
-                    String::new()
-                } else {
-                    format!("MJCF site \"{n}\"")
-                },
-                name: id,
-                body: spec.body[b].name.clone(),
-                origin: h.place.then(&s.frame).origin_spec(),
-            });
-        }
+        place_inertial(m, i, own[i], h, &mut parts, &mut out);
+        place_sites(m, i, h, &mut spec, &mut sites, &mut out);
     }
     for (b, p) in parts.iter().enumerate() {
         set_inertial(&mut spec.body[b], p);
@@ -445,5 +264,66 @@ pub(super) fn spec(m: &Model, origin: &str, problems: &mut Vec<Problem>) -> Lowe
             .into_iter()
             .map(|(k, v)| (k.to_string(), v))
             .collect(),
+    }
+}
+
+/// The sites of MuJoCo body `i` as `[[site]]`s on its host `h` (left out, with a note, on a body
+/// welded to the world).
+fn place_sites(
+    m: &Model,
+    i: usize,
+    h: Host,
+    spec: &mut Spec,
+    sites: &mut Namer,
+    out: &mut Outcome,
+) {
+    for s in &m.bodies[i].sites {
+        let Some(b) = h.body else {
+            if let Some(n) = &s.name {
+                out.notes.push(format!(
+                    "site '{n}' is on a body welded to the world: left out"
+                ));
+            }
+            continue;
+        };
+        let n = s
+            .name
+            .clone()
+            .unwrap_or_else(|| format!("{}_site", body_name(m, i)));
+        let id = sites.name(&n);
+        spec.site.push(SiteSpec {
+            description: if id == n {
+                String::new()
+            } else {
+                format!("MJCF site \"{n}\"")
+            },
+            name: id,
+            body: spec.body[b].name.clone(),
+            origin: h.place.then(&s.frame).origin_spec(),
+        });
+    }
+}
+
+/// Adds MuJoCo body `i`'s inertial `own` to the parts of its host `h`, in the host's frame (a
+/// note when the body is welded to the world with a mass).
+fn place_inertial(
+    m: &Model,
+    i: usize,
+    (mass, com, j): Part,
+    h: Host,
+    parts: &mut [Vec<Part>],
+    out: &mut Outcome,
+) {
+    match h.body {
+        Some(b) => parts[b].push((
+            mass,
+            h.place.p + h.place.r * com,
+            h.place.r * j * h.place.r.transpose(),
+        )),
+        None if mass > 0.0 => out.notes.push(format!(
+            "body '{}' has no joint: it is welded to the world and its mass does not move",
+            body_name(m, i)
+        )),
+        None => {}
     }
 }

@@ -22,6 +22,8 @@
 //!   with a note saying what is not reproduced;
 //! - `<motor>`, `<position>`, `<velocity>` (and `<general>` equal to one of them) on a hinge or
 //!   slide are `[[actuator]]`s with MuJoCo's law, gear and clamps: the input `actuator.A.ctrl`;
+//!   a hinge's or slide's `actuatorfrcrange` (limited by `actuatorfrclimited`, or given with
+//!   `autolimits`) is the joint's `actuatorfrcrange`, the clamp of its actuators' summed force;
 //! - `<equality connect>` → a loop-closing spherical joint, `weld` → a loop-closing fixed joint,
 //!   both at the bodies' places at `qpos0`;
 //! - tendons, muscles, flex, composites and plugins are refused; lights, cameras, materials,
@@ -30,11 +32,13 @@
 mod actuator_law;
 mod actuators;
 mod bodies;
+mod body_inertials;
 mod contacts;
 mod defaults;
 mod equality;
 mod frames;
 mod inertia;
+mod joint_spec;
 mod keyframe;
 mod lower;
 mod model;

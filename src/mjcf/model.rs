@@ -55,6 +55,8 @@ pub(super) struct Joint {
     pub reference: f64,
     pub armature: f64,
     pub frictionloss: f64,
+    /// The clamp of the summed actuator force on the joint (N·m or N), when limited.
+    pub actuatorfrcrange: Option<[f64; 2]>,
 }
 
 /// What a geom is.

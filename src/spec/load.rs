@@ -189,6 +189,7 @@ const JOINT: &[Field] = &[
     opt("lower", NUM),
     opt("upper", NUM),
     opt("effort", NUM),
+    opt("actuatorfrcrange", RANGE),
     opt("stop_stiffness", NUM),
     opt("stop_damping", NUM),
     opt("initial", Check::Table(INITIAL)),

@@ -211,6 +211,7 @@ fn limits(j: &JointSpec) -> JointLimits {
         effort: j.effort.unwrap_or(d.effort),
         stop_stiffness: j.stop_stiffness.unwrap_or(d.stop_stiffness),
         stop_damping: j.stop_damping.unwrap_or(d.stop_damping),
+        actuator_force: j.actuatorfrcrange,
     }
 }
 

@@ -24,6 +24,7 @@
 //! | `[[joint]]` `armature` | number ≥ 0 | rotor inertia in joint space, kg·m² or kg (0; not spherical, fixed or loop-closing) |
 //! | `[[joint]]` `friction` | number ≥ 0 | Coulomb friction per coordinate, N·m or N (0; not spherical, fixed or loop-closing) |
 //! | `[[joint]]` `lower`, `upper`, `effort` | numbers | revolute and prismatic: position limits (one-sided stops; none), actuator clamp ±effort (none) |
+//! | `[[joint]]` `actuatorfrcrange` | `[lo, hi]`, lo < hi | revolute and prismatic: the sum of the `[[actuator]]`s' generalised forces on the joint clamped, N·m or N (none; MuJoCo's `actuatorfrcrange`) |
 //! | `[[joint]]` `stop_stiffness`, `stop_damping` | numbers | the stops' spring (1e4 N·m/rad or N/m) and Hunt–Crossley damping (0) |
 //! | `[[joint]]` `initial = { q, qd }` | number or list | tree joints: coordinates and rates (zeros); spherical: `{ rpy \| quat, w }` |
 //! | `[[load]]` `body`, `torque`, `force` | name, bools | world-frame torque / force-at-COM inputs on a body |

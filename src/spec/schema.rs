@@ -406,6 +406,11 @@ pub struct JointSpec {
     /// Revolute and prismatic joints: the actuator input is clamped to ±effort, N·m or N (> 0).
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub effort: Option<f64>,
+    /// Revolute and prismatic joints: the sum of the generalised forces of the
+    /// `[[actuator]]`s driving the joint is clamped to `[lo, hi]`, N·m or N (lo < hi; none:
+    /// unclamped), as MuJoCo's joint `actuatorfrcrange`. The joint's own input is not in it.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub actuatorfrcrange: Option<[f64; 2]>,
     /// Stiffness of the stops, N·m/rad or N/m (> 0; default 1e4).
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub stop_stiffness: Option<f64>,

@@ -412,6 +412,7 @@ pub(crate) fn spec(
                 lower,
                 upper,
                 effort,
+                actuatorfrcrange: None,
                 stop_stiffness: None,
                 stop_damping: None,
                 initial: None,

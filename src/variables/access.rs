@@ -4,8 +4,9 @@
 use super::types::Accessor;
 use crate::mechanics::{ranges, JointInitial, JointLimits, ModelDef, SolverSettings, State};
 
-/// Value of an input, an output or a tunable parameter (damping, stiffness) in `state`; `None`
-/// for fixed parameters (see [`read_param`]) and for outputs the state does not hold.
+/// Value of an input, an output or a tunable parameter (damping, stiffness, actuator gains) in
+/// `state`; `None` for fixed parameters (see [`read_param`]) and for outputs the state does not
+/// hold.
 #[must_use]
 pub fn read_state(acc: Accessor, state: &State) -> Option<f64> {
     let out = state.outputs();
@@ -39,6 +40,8 @@ pub fn read_state(acc: Accessor, state: &State) -> Option<f64> {
         // the table only makes these for joints of the same definition as the state
         Accessor::Damping(j) => Some(state.damping(j)),
         Accessor::Stiffness(j) => Some(state.stiffness(j)),
+        Accessor::ActuatorKp(a) => Some(state.gains(a)[0]),
+        Accessor::ActuatorKv(a) => Some(state.gains(a)[1]),
         _ => None,
     }
 }
@@ -74,6 +77,9 @@ pub fn read_param(acc: Accessor, def: &ModelDef, settings: &SolverSettings) -> O
         Accessor::StopDamping(j) => def.joints.get(j).map(|j| j.limits.stop_damping),
         Accessor::Armature(j) => def.joints.get(j).map(|j| j.armature),
         Accessor::Friction(j) => def.joints.get(j).map(|j| j.friction),
+        Accessor::ActuatorGear(a) => def.actuators.get(a).map(|a| a.gear),
+        Accessor::ActuatorKp(a) => def.actuators.get(a).map(|a| a.law.gains()[0]),
+        Accessor::ActuatorKv(a) => def.actuators.get(a).map(|a| a.law.gains()[1]),
         Accessor::MaxStep => Some(settings.max_step),
         Accessor::Tolerance => Some(settings.tolerance),
         Accessor::Order => Some(f64::from(settings.order)),
@@ -209,6 +215,18 @@ pub fn write_param(
         Accessor::Friction(j) => {
             named("friction", ranges::non_negative(value))?;
             def.joints.get_mut(j).ok_or("no such joint")?.friction = value;
+        }
+        Accessor::ActuatorGear(a) => {
+            named("gear", ranges::non_zero(value))?;
+            def.actuators.get_mut(a).ok_or("no such actuator")?.gear = value;
+        }
+        Accessor::ActuatorKp(a) | Accessor::ActuatorKv(a) => {
+            let kv = matches!(acc, Accessor::ActuatorKv(_));
+            named(if kv { "kv" } else { "kp" }, ranges::non_negative(value))?;
+            let act = def.actuators.get_mut(a).ok_or("no such actuator")?;
+            let mut gains = act.law.gains();
+            gains[usize::from(kv)] = value;
+            act.law = act.law.with_gains(gains);
         }
         Accessor::MaxStep => {
             named("solver.max_step", ranges::max_step(value))?;

@@ -1,9 +1,9 @@
 //! Parameters of the variable table: gravity, bodies, joint initial values, damping and
-//! stiffness, solver settings.
+//! stiffness, actuator gears and gains, solver settings.
 
 use super::builder::{coord_words, coords, index, Builder, Coord, XYZ};
 use super::types::{Accessor, Causality, Variability};
-use crate::mechanics::{JointDef, JointInitial, JointType, ModelDef, SolverSettings};
+use crate::mechanics::{ActuatorLaw, JointDef, JointInitial, JointType, ModelDef, SolverSettings};
 
 fn initial_value(j: &JointDef, k: usize, rate: bool) -> f64 {
     match (&j.initial, rate) {
@@ -167,6 +167,62 @@ fn limit_parameters(b: &mut Builder, joint: usize, j: &JointDef) {
     }
 }
 
+/// `actuator.A.gear` (fixed) of every actuator, `actuator.A.kp` (position servos) and
+/// `actuator.A.kv` (position and velocity servos), tunable between steps.
+fn actuator_parameters(b: &mut Builder, def: &ModelDef) {
+    for (k, a) in def.actuators.iter().enumerate() {
+        let Some(jd) = def.joints.get(a.joint) else {
+            continue;
+        };
+        let (n, j) = (&a.name, &jd.name);
+        let angle = jd.kind == JointType::Revolute;
+        b.fixed(
+            format!("actuator.{n}.gear"),
+            a.gear,
+            Some("1"),
+            format!("gear of actuator {n}: its length is gear·q of joint {j}, and joint {j} receives gear·force (finite, non-zero)"),
+            Accessor::ActuatorGear(k),
+        );
+        let [kp, kv] = a.law.gains();
+        let (kp_unit, kv_unit) = if angle {
+            ("N.m/rad", "N.m.s/rad")
+        } else {
+            ("N/m", "N.s/m")
+        };
+        let position = matches!(a.law, ActuatorLaw::Position { .. });
+        if position {
+            b.push(
+                format!("actuator.{n}.kp"),
+                Causality::Parameter,
+                Variability::Tunable,
+                Some(kp),
+                Some(kp_unit),
+                format!("position gain of servo {n}: force = kp·(ctrl − gear·q) − kv·gear·qd (>= 0; tunable between steps, its work counted in system.work)"),
+                Accessor::ActuatorKp(k),
+            );
+        }
+        if position || matches!(a.law, ActuatorLaw::Velocity { .. }) {
+            let law = if position {
+                "damping gain of position servo {n}: force = kp·(ctrl − gear·q) − kv·gear·qd"
+            } else {
+                "gain of velocity servo {n}: force = kv·(ctrl − gear·qd)"
+            };
+            b.push(
+                format!("actuator.{n}.kv"),
+                Causality::Parameter,
+                Variability::Tunable,
+                Some(kv),
+                Some(kv_unit),
+                format!(
+                    "{} (>= 0; tunable between steps, its work counted in system.work)",
+                    law.replace("{n}", n)
+                ),
+                Accessor::ActuatorKv(k),
+            );
+        }
+    }
+}
+
 pub(super) fn parameters(b: &mut Builder, def: &ModelDef, settings: &SolverSettings) {
     for (i, c) in XYZ.iter().enumerate() {
         b.fixed(
@@ -195,6 +251,7 @@ pub(super) fn parameters(b: &mut Builder, def: &ModelDef, settings: &SolverSetti
     for (joint, j) in def.joints.iter().enumerate() {
         joint_parameters(b, joint, j);
     }
+    actuator_parameters(b, def);
     if let Some(g) = &def.contact.ground {
         b.fixed(
             "ground.height".into(),

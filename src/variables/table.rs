@@ -129,17 +129,14 @@ fn inputs(b: &mut Builder, def: &ModelDef) {
         };
         let angle = jd.kind == JointType::Revolute;
         let (unit, law) = match a.law {
-            ActuatorLaw::Motor => (
-                if angle { "N.m" } else { "N" },
-                "motor: force = ctrl".to_string(),
-            ),
-            ActuatorLaw::Position { kp, kv } => (
+            ActuatorLaw::Motor => (if angle { "N.m" } else { "N" }, "motor: force = ctrl"),
+            ActuatorLaw::Position { .. } => (
                 if angle { "rad" } else { "m" },
-                format!("position servo: force = {kp}·(ctrl − gear·q) − {kv}·gear·qd"),
+                "position servo: force = kp·(ctrl − gear·q) − kv·gear·qd",
             ),
-            ActuatorLaw::Velocity { kv } => (
+            ActuatorLaw::Velocity { .. } => (
                 if angle { "rad/s" } else { "m/s" },
-                format!("velocity servo: force = {kv}·(ctrl − gear·qd)"),
+                "velocity servo: force = kv·(ctrl − gear·qd)",
             ),
         };
         let clamp = |what: &str, r: Option<[f64; 2]>| {
@@ -151,10 +148,10 @@ fn inputs(b: &mut Builder, def: &ModelDef) {
             format!("actuator.{}.ctrl", a.name),
             unit,
             format!(
-                "control of actuator {} on joint {} ({law}, gear {}; joint load gear·force){}{}",
+                "control of actuator {} on joint {} ({law}, parameters actuator.{}.*; joint load gear·force){}{}",
                 a.name,
                 jd.name,
-                a.gear,
+                a.name,
                 clamp("ctrl", a.ctrlrange),
                 clamp("force", a.forcerange)
             ),

@@ -202,6 +202,12 @@ pub enum Accessor {
     Armature(usize),
     /// `joint.J.friction` (fixed).
     Friction(usize),
+    /// `actuator.A.gear` (fixed; index in `ModelDef::actuators`).
+    ActuatorGear(usize),
+    /// `actuator.A.kp` of a position servo (tunable).
+    ActuatorKp(usize),
+    /// `actuator.A.kv` of a position or velocity servo (tunable).
+    ActuatorKv(usize),
     /// `solver.max_step`.
     MaxStep,
     /// `solver.tolerance`.

@@ -219,3 +219,85 @@ def test_actuator_defaults_as_mujoco_compiles_them(triad_bin, tmp_path, default)
         assert a.get("gear", 1.0) == m.actuator_gear[0, 0], (default, element)
         assert ("ctrlrange" in a) == bool(m.actuator_ctrllimited[0]), (default, element)
         assert ("forcerange" in a) == bool(m.actuator_forcelimited[0]), (default, element)
+
+
+# A joint's actuatorfrcrange clamps the *sum* of the actuator forces on it (MuJoCo's
+# qfrc_actuator clamp): on the hinge a motor and a servo whose sum saturates, on the slide one
+# motor beyond it; the elbow's range is switched off by actuatorfrclimited="false", the wrist's
+# comes from a <default> class with autolimits.
+FRCRANGE = """
+<mujoco model="frcrange">
+  <compiler angle="radian" autolimits="true"/>
+  <option timestep="1e-4" integrator="RK4"><flag contact="disable"/></option>
+  <default>
+    <default class="limited"><joint actuatorfrcrange="-0.3 0.25"/></default>
+  </default>
+  <worldbody>
+    <body name="cart" pos="0 0 0.5">
+      <joint name="rail" type="slide" axis="1 0 0" actuatorfrcrange="-1.5 1"/>
+      <geom type="box" size="0.2 0.1 0.05" mass="2"/>
+      <body name="upper">
+        <joint name="shoulder" type="hinge" axis="0 1 0" actuatorfrcrange="-2 1.2"/>
+        <geom type="capsule" fromto="0 0 0 0.1 0 -0.5" size="0.04"/>
+        <body name="lower" pos="0.1 0 -0.5">
+          <joint name="elbow" type="hinge" axis="1 1 0" actuatorfrcrange="-0.1 0.1" actuatorfrclimited="false"/>
+          <geom type="box" size="0.03 0.04 0.2" pos="0 0 -0.2"/>
+          <body name="hand" pos="0 0 -0.4">
+            <joint name="wrist" class="limited" type="hinge" axis="0 0 1"/>
+            <geom type="box" size="0.1 0.02 0.02" mass="0.3"/>
+          </body>
+        </body>
+      </body>
+    </body>
+  </worldbody>
+  <actuator>
+    <motor name="rail_motor" joint="rail" gear="2"/>
+    <motor name="shoulder_motor" joint="shoulder" gear="1.5"/>
+    <position name="shoulder_servo" joint="shoulder" kp="6" kv="0.5" gear="-1"/>
+    <motor name="elbow_motor" joint="elbow"/>
+    <motor name="wrist_motor" joint="wrist" gear="0.5"/>
+    <velocity name="wrist_velocity" joint="wrist" kv="0.4"/>
+  </actuator>
+  <keyframe><key name="k" qpos="0.1 0.4 -0.3 0.2" qvel="0.2 -1 0.5 1"/></keyframe>
+</mujoco>
+"""
+FRC_NAMES = ["rail_motor", "shoulder_motor", "shoulder_servo", "elbow_motor", "wrist_motor", "wrist_velocity"]
+
+
+def test_actuatorfrcrange_clamps_the_summed_force(triad_bin, tmp_path):
+    """The joints' trajectories against MuJoCo's (RK4) to TOL, with the summed forces clamped
+    for part of the run (checked below on MuJoCo's own qfrc_actuator)."""
+    xml = tmp_path / "frcrange.xml"
+    xml.write_text(FRCRANGE)
+    m = mujoco.MjModel.from_xml_string(FRCRANGE)
+    assert list(m.jnt_actfrclimited) == [1, 1, 0, 1]
+    # the clamp is hit: MuJoCo's unclamped sum exceeds the range at the constant controls
+    constant = [0.8, 1.5, -0.6, 0.3, 0.9, -1.0]
+    d = mujoco.MjData(m)
+    mujoco.mj_resetDataKeyframe(m, d, 0)
+    d.ctrl[:] = constant
+    mujoco.mj_forward(m, d)
+    raw = np.zeros(m.nv)
+    for a in range(m.nu):
+        raw[m.jnt_dofadr[m.actuator_trnid[a, 0]]] += m.actuator_gear[a, 0] * d.actuator_force[a]
+    # the rail's one motor and the shoulder's motor + servo sum beyond their ranges
+    assert np.all(np.abs(raw - d.qfrc_actuator)[:2] > 0.1), (raw, d.qfrc_actuator)
+    _check(triad_bin, tmp_path, xml, FRC_NAMES, ["rail", "shoulder", "elbow", "wrist"],
+           constant, [1.2, 2.0, 1.5, 0.5, 1.0, 2.0])
+
+
+def test_imported_actuatorfrcrange(triad_bin, tmp_path):
+    """The written joints carry actuatorfrcrange exactly where MuJoCo limits them."""
+    import tomllib
+    xml = tmp_path / "frcrange.xml"
+    xml.write_text(FRCRANGE)
+    spec = tomllib.loads(subprocess.run([triad_bin, "import", str(xml)], check=True, capture_output=True,
+                                        text=True, timeout=60).stdout)
+    m = mujoco.MjModel.from_xml_string(FRCRANGE)
+    joints = {j["name"]: j for j in spec["joint"]}
+    for i in range(m.njnt):
+        j = joints[mujoco.mj_id2name(m, mujoco.mjtObj.mjOBJ_JOINT, i)]
+        if m.jnt_actfrclimited[i]:
+            assert j["actuatorfrcrange"] == list(m.jnt_actfrcrange[i])
+        else:
+            assert "actuatorfrcrange" not in j

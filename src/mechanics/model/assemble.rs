@@ -12,7 +12,7 @@ use super::constraint::write3;
 use super::def::{JointType, ModelDef, SolverSettings};
 use super::error::ModelError;
 use super::joint::{Dof, JointGeom};
-use super::joint_actuator::JointActuator;
+use super::joint_actuator::{JointActuator, JointActuators};
 use super::runtime::{
     covers, euler_tensor, exact_jacobian, BodyRt, DofRt, InputSlot, JointRt, Model, TurnRt,
     ZERO_MOMENT,
@@ -83,12 +83,22 @@ impl Model {
                 (0..3).for_each(|i| inputs.push(InputSlot::BodyForce { body: load.body, i }));
             }
         }
-        let mut joint_acts = vec![Vec::new(); def.joints.len()];
+        let mut joint_acts = vec![JointActuators::default(); def.joints.len()];
+        for (acts, jd) in joint_acts.iter_mut().zip(&def.joints) {
+            if let Some(range) = jd.limits.actuator_force {
+                if let Some(why) = super::joint_actuator::invalid_range(jd, range) {
+                    return Err(ModelError::Invalid(why));
+                }
+                acts.range = range;
+            }
+        }
         for (k, a) in def.actuators.iter().enumerate() {
             if let Some(why) = super::joint_actuator::invalid(def, a) {
                 return Err(ModelError::Invalid(why));
             }
-            joint_acts[a.joint].push(JointActuator::new(a, inputs.len()));
+            joint_acts[a.joint]
+                .list
+                .push(JointActuator::new(a, k, inputs.len()));
             inputs.push(InputSlot::ActuatorCtrl { actuator: k });
         }
         if !(settings.max_step.is_finite() && settings.max_step > 0.0) {
@@ -223,7 +233,7 @@ fn mass_data(def: &ModelDef) -> Result<(Vec<BodyRt>, f64), ModelError> {
 pub(crate) fn build(
     model: &mut Model,
     joint_input: &[Option<usize>],
-    mut joint_acts: Vec<Vec<JointActuator>>,
+    mut joint_acts: Vec<JointActuators>,
 ) -> Result<(), ModelError> {
     let def = model.def().clone();
     let nb = def.bodies.len();

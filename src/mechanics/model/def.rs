@@ -201,6 +201,10 @@ pub struct JointLimits {
     pub stop_stiffness: f64,
     /// Stop damping (Hunt–Crossley: force `c·penetration·rate`), N·m·s/rad² or N·s/m² (≥ 0).
     pub stop_damping: f64,
+    /// The sum of the generalised forces of the `[[actuator]]`s driving the coordinate is
+    /// clamped to `[lo, hi]`, N·m or N (MuJoCo's joint `actuatorfrcrange`; none: unclamped).
+    /// The joint's own input (`joint.J.tau`, `joint.J.f`) is not part of that sum.
+    pub actuator_force: Option<[f64; 2]>,
 }
 
 impl Default for JointLimits {
@@ -211,6 +215,7 @@ impl Default for JointLimits {
             effort: f64::INFINITY,
             stop_stiffness: STOP_STIFFNESS,
             stop_damping: 0.0,
+            actuator_force: None,
         }
     }
 }
@@ -347,6 +352,29 @@ pub enum ActuatorLaw {
         /// Velocity gain.
         kv: f64,
     },
+}
+
+impl ActuatorLaw {
+    /// The gains `[kp, kv]` (N·m/rad or N/m, N·m·s/rad or N·s/m per unit of gear): 0 where
+    /// the law has none (a motor has neither, a velocity servo no `kp`).
+    #[must_use]
+    pub fn gains(&self) -> [f64; 2] {
+        match *self {
+            Self::Motor => [0.0, 0.0],
+            Self::Position { kp, kv } => [kp, kv],
+            Self::Velocity { kv } => [0.0, kv],
+        }
+    }
+
+    /// The same law with the gains `[kp, kv]` (those it has no use for ignored).
+    #[must_use]
+    pub fn with_gains(self, [kp, kv]: [f64; 2]) -> Self {
+        match self {
+            Self::Motor => Self::Motor,
+            Self::Position { .. } => Self::Position { kp, kv },
+            Self::Velocity { .. } => Self::Velocity { kv },
+        }
+    }
 }
 
 /// A joint actuator: a control input acting on the coordinate of a revolute or prismatic tree

@@ -76,6 +76,19 @@ pub fn non_negative(v: f64) -> Result<(), String> {
     }
 }
 
+/// `v` finite and `≠ 0`: actuator gears.
+///
+/// # Errors
+/// Zero or non-finite.
+pub fn non_zero(v: f64) -> Result<(), String> {
+    any_finite(v)?;
+    if v == 0.0 {
+        Err("must be non-zero".to_string())
+    } else {
+        Ok(())
+    }
+}
+
 /// `0 < v < ∞`: effort limits and stop stiffness.
 ///
 /// # Errors

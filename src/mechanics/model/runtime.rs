@@ -176,8 +176,9 @@ pub(crate) struct JointRt {
     pub friction: Option<super::joint_friction::JointFriction>,
     /// Offset of this joint's friction bristles in the state's `fric` (one per dof).
     pub fric0: usize,
-    /// The actuators driving its coordinate (revolute and prismatic tree joints).
-    pub acts: Vec<super::joint_actuator::JointActuator>,
+    /// The actuators driving its coordinate (revolute and prismatic tree joints), and the clamp
+    /// of their sum.
+    pub acts: super::joint_actuator::JointActuators,
 }
 
 /// A built, immutable multibody model.

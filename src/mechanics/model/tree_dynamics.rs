@@ -42,7 +42,7 @@
 
 use super::def::{JointType, ModelDef};
 use super::joint::joint_frame;
-use super::joint_actuator::JointActuator;
+use super::joint_actuator::JointActuators;
 use super::runtime::Model;
 use super::sticking::{lift_sigma, Sticking};
 use super::stops::Stops;
@@ -142,7 +142,7 @@ struct JointData {
     stops: Option<Stops>,
     effort: f64,
     input: Option<usize>,
-    acts: Vec<JointActuator>,
+    acts: JointActuators,
 }
 
 /// A tree model prepared for the minimal-coordinate dynamics, at given damping and stiffness
@@ -169,6 +169,8 @@ pub struct TreeDynamics {
     /// The touching ground points and the joints' friction bristles of the operating point
     /// (`sticking`; empty until [`TreeDynamics::set_sticking`]).
     sticking: Sticking,
+    /// The actuators' gains `[kp, kv]`, two per actuator of the model.
+    gains: Vec<f64>,
 }
 
 /// A joint's relative motion in its parent joint frame: `M`, `τ`, the rate columns `(a_k, b_k)`
@@ -278,7 +280,8 @@ pub struct Motion<T: Real> {
 }
 
 impl TreeDynamics {
-    /// Prepares `model` with the joints' current `damping` and `stiffness` (per joint) and the
+    /// Prepares `model` with the joints' current `damping` and `stiffness` (per joint), the
+    /// actuators' current `gains` (`[kp, kv]` per actuator, as `State::gains`) and the
     /// operating orientations `joint_rot0` (spherical joints: relative rotation child joint
     /// frame → parent joint frame; others unused) and `body_rot0` (free bodies; others unused).
     ///
@@ -291,6 +294,7 @@ impl TreeDynamics {
         model: &Model,
         damping: &[f64],
         stiffness: &[f64],
+        gains: &[f64],
         joint_rot0: Vec<Mat3>,
         body_rot0: Vec<Mat3>,
     ) -> Result<Self, Unsupported> {
@@ -350,6 +354,7 @@ impl TreeDynamics {
                 .map(|s| (s.body, s.frame.translation, s.frame.rotation))
                 .collect(),
             nu: model.inputs.len(),
+            gains: gains.to_vec(),
             coords,
             sticking: Sticking::default(),
         })
@@ -677,8 +682,8 @@ impl TreeDynamics {
                             act
                         };
                     }
-                    for a in &jd.acts {
-                        gen += a.torque(u[a.input], qk, vk);
+                    if !jd.acts.is_empty() {
+                        gen += jd.acts.torque(&self.gains, u, qk, vk);
                     }
                     if let Some(st) = &jd.stops {
                         let pu = qk - c::<T>(st.upper);

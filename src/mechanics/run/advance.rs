@@ -80,9 +80,10 @@ fn trial(model: &Model, state: &mut State, h: f64) -> Result<StepStats, StepErro
         .damping
         .iter()
         .chain(state.stiffness.iter())
+        .chain(state.gains.iter())
         .any(|x| !x.is_finite())
     {
-        return Err(StepError::NonFinite("damping or stiffness"));
+        return Err(StepError::NonFinite("damping, stiffness or actuator gains"));
     }
     let mut stats = StepStats::default();
     let mut outcome = compose_from(model, state, h, Plan::Configured, &mut stats);
@@ -137,6 +138,7 @@ fn compose_from(
         inputs: &state.inputs,
         damping: &state.damping,
         stiffness: &state.stiffness,
+        gains: &state.gains,
     };
     compose(model, ws, &held, h, plan, stats)
 }

@@ -7,8 +7,8 @@
 //! free body B:              r = body.B.r, θ = 0, R₀ = body.B.R,  ν = (body.B.v, body.B.w)
 //! ```
 //!
-//! The rates are the outputs' (admissible, `projection.rs`); damping, stiffness and inputs are
-//! the state's current values.
+//! The rates are the outputs' (admissible, `projection.rs`); damping, stiffness, actuator gains
+//! and inputs are the state's current values.
 //!
 //! ```text
 //! touching contacts, joint friction: their sticking bristles σ (`sticking`) follow, x = (q, ν, σ):
@@ -82,7 +82,9 @@ impl Operating {
             })
             .collect();
         let body_rot0 = out.bodies.iter().map(|b| b.rot).collect();
-        let dynamics = TreeDynamics::new(model, &damping, &stiffness, joint_rot0, body_rot0)?;
+        let gains = &state.gains;
+        let dynamics =
+            TreeDynamics::new(model, &damping, &stiffness, gains, joint_rot0, body_rot0)?;
         let n = dynamics.n();
         let (mut q, mut nu) = (vec![0.0; n], vec![0.0; n]);
         for (i, co) in dynamics.coords().iter().enumerate() {

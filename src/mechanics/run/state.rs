@@ -47,6 +47,8 @@ pub struct State {
     pub(crate) inputs: Vec<f64>,
     pub(crate) damping: Vec<f64>,
     pub(crate) stiffness: Vec<f64>,
+    /// Gains `[kp, kv]` of each actuator of the model (tunable; 0 where its law has none).
+    pub(crate) gains: Vec<f64>,
     pub(crate) outputs: Outputs,
     /// Steps of this run that an order-4 composition redid as order-2 stages (a stiff damper,
     /// `step::stage`), and the joint of the first; a tally for notices, not part of the
@@ -79,6 +81,7 @@ impl State {
             inputs: vec![0.0; model.inputs().len()],
             damping: def.joints.iter().map(|j| j.damping).collect(),
             stiffness: def.joints.iter().map(|j| j.stiffness).collect(),
+            gains: def.actuators.iter().flat_map(|a| a.law.gains()).collect(),
             outputs: Outputs::for_model(model),
             order2: (0, None),
             bristle: vec![0.0; 3 * model.contact.bristles()],
@@ -201,6 +204,19 @@ impl State {
         self.stiffness[j] = k;
     }
 
+    /// Gains `[kp, kv]` of actuator `a` (index in `ModelDef::actuators`; tunable), N·m/rad or
+    /// N/m and N·m·s/rad or N·s/m per unit of gear (0 where its law has none).
+    #[must_use]
+    pub fn gains(&self, a: usize) -> [f64; 2] {
+        [self.gains[2 * a], self.gains[2 * a + 1]]
+    }
+
+    /// Sets gain `k` (0: kp, 1: kv) of actuator `a`; the next step uses it (a gain the law has
+    /// no use for has no effect).
+    pub fn set_gain(&mut self, a: usize, k: usize, value: f64) {
+        self.gains[2 * a + k] = value;
+    }
+
     /// Outputs at the current time.
     #[must_use]
     pub fn outputs(&self) -> &Outputs {
@@ -242,6 +258,7 @@ impl State {
         self.inputs.clone_from(&src.inputs);
         self.damping.clone_from(&src.damping);
         self.stiffness.clone_from(&src.stiffness);
+        self.gains.clone_from(&src.gains);
     }
 
     /// Newton work done by this state's steps so far, in iterations (one per residual
@@ -272,7 +289,7 @@ impl State {
 
     /// Every number that determines the future of this state (time, q, v, multipliers used as
     /// the Newton start, inputs, tunable parameters, accumulated work, unwrapping memory), flat:
-    /// `[t, lag, q.., v.., v_lo.., λ/2.., angles.., work, hist.., h_prev.., memory (3), inputs.., damping.., stiffness.., bristles.., rotor rates.., joint friction bristles.., step control..]`.
+    /// `[t, lag, q.., v.., v_lo.., λ/2.., angles.., work, hist.., h_prev.., memory (3), inputs.., damping.., stiffness.., actuator gains.., bristles.., rotor rates.., joint friction bristles.., step control..]`.
     #[must_use]
     pub fn snapshot(&self) -> Vec<f64> {
         let mut out = Vec::with_capacity(self.snapshot_len());
@@ -290,6 +307,7 @@ impl State {
         out.extend_from_slice(&self.inputs);
         out.extend_from_slice(&self.damping);
         out.extend_from_slice(&self.stiffness);
+        out.extend_from_slice(&self.gains);
         out.extend_from_slice(&self.bristle);
         out.extend_from_slice(&self.arm);
         out.extend_from_slice(&self.fric);
@@ -308,6 +326,7 @@ impl State {
             + self.inputs.len()
             + self.damping.len()
             + self.stiffness.len()
+            + self.gains.len()
             + self.bristle.len()
             + self.arm.len()
             + self.fric.len()
@@ -349,6 +368,7 @@ impl State {
         take(&mut self.inputs);
         take(&mut self.damping);
         take(&mut self.stiffness);
+        take(&mut self.gains);
         take(&mut self.bristle);
         take(&mut self.arm);
         take(&mut self.fric);

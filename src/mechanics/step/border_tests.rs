@@ -64,6 +64,7 @@ fn assert_newton_agrees(def: &ModelDef, tol: f64, coupled: bool) -> f64 {
         inputs: &[],
         damping: &damping,
         stiffness: &stiffness,
+        gains: &[],
     };
     let h = 0.01;
     stage_rates(&mut wd, h);
@@ -196,6 +197,7 @@ fn residual_mode_keeps_the_border() {
         inputs: &[],
         damping: &damping,
         stiffness: &stiffness,
+        gains: &[],
     };
     evaluate(&m, &mut ws, &held, 0.01, Mode::Full);
     assert!(solve(&m, &mut ws));

@@ -31,7 +31,6 @@ use crate::mechanics::model::assemble::unwrap;
 use crate::mechanics::model::constraint::body_nodes;
 use crate::mechanics::model::constraint::read3;
 use crate::mechanics::model::constraint::Nodes;
-use crate::mechanics::model::joint_actuator::stage_sum;
 use crate::mechanics::model::kernels::rotation_increment;
 use crate::mechanics::model::runtime::{DofRt, Model};
 
@@ -91,7 +90,7 @@ pub(crate) fn finish(model: &Model, ws: &mut Work, held: &Held, h: f64) -> f64 {
                             gained -= st.loss;
                         }
                     }
-                    work += (act + stage_sum(&jt.acts, held.inputs, s0, ds, h).0) * ds;
+                    work += (act + jt.acts.stage(held.inputs, held.gains, s0, ds, h).0) * ds;
                     gained -= c_d * ds * ds / h + jt.stops.map_or(0.0, |st| st.loss(s0, ds, h));
                 }
                 DofRt::Turn(tr) => {
@@ -116,13 +115,13 @@ pub(crate) fn finish(model: &Model, ws: &mut Work, held: &Held, h: f64) -> f64 {
                         let stops = jt.stops.as_ref();
                         let rotor = arm.map_or([0.0; 2], |i| [jt.armature, ws.arm[i]]);
                         let fr0 = fric.map(|(fr, i)| (fr, ws.fric[i]));
-                        let acts = (&jt.acts[..], held.inputs);
+                        let acts = (&jt.acts, held.inputs, held.gains);
                         let st =
                             turn_step([s0, c0], [ds, dc], t0, k_s, c_d, stops, rotor, fr0, acts, h);
                         ws.ang1[turn] = t0 + st.dt;
                         if !jt.acts.is_empty() {
                             // the joint actuators' work τ Δt (module formulas of `turn`)
-                            work += stage_sum(&jt.acts, held.inputs, t0, st.dt, h).0 * st.dt;
+                            work += jt.acts.stage(held.inputs, held.gains, t0, st.dt, h).0 * st.dt;
                         }
                         if let Some(i) = arm {
                             ws.arm1[i] = 2.0 * st.dt / h - ws.arm[i];

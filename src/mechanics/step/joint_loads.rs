@@ -13,7 +13,6 @@ use super::turn::{row_increment, theta_jac, turn_step};
 use super::work::{Held, Work};
 use crate::math::Vec3;
 use crate::mechanics::model::constraint::{body_nodes, read3, write3, DotRow, Nodes};
-use crate::mechanics::model::joint_actuator::stage_sum;
 use crate::mechanics::model::kernels::{
     linvec_jac, node_block, outer, project, push_torque, rotation_increment, row_q, torque_jac,
 };
@@ -207,7 +206,7 @@ pub(crate) fn joint_loads(
                         (f_fric, df_fric) = (st.force, st.dforce);
                     }
                 }
-                let (f_act, df_act) = stage_sum(&jt.acts, held.inputs, s0, ds, h);
+                let (f_act, df_act) = jt.acts.stage(held.inputs, held.gains, s0, ds, h);
                 let coef =
                     act - 0.5 * k_s * (s0 + s1) - c_d * ds / h + f_stop - f_rotor + f_fric + f_act;
                 let stiff = k_s != 0.0
@@ -268,7 +267,7 @@ pub(crate) fn joint_loads(
                     let ds = row_increment(&tr.sin, qa_bar, qb_bar, &dqa, &dqb);
                     let dc = row_increment(&tr.cos, qa_bar, qb_bar, &dqa, &dqb);
                     let stops = jt.stops.as_ref();
-                    let acts = (&jt.acts[..], held.inputs);
+                    let acts = (&jt.acts, held.inputs, held.gains);
                     let st = turn_step([s0, c0], [ds, dc], t0, k_s, c_d, stops, arm, fric, acts, h);
                     if st.fs == 0.0 && st.fc == 0.0 && st.jac == [0.0; 4] {
                         // stops that neither end of the step has reached, and nothing else

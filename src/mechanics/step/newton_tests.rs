@@ -155,6 +155,7 @@ fn assert_jacobian(def: &ModelDef, stiffness: &[f64], damping: &[f64], scale: f6
         inputs: &inputs,
         damping,
         stiffness,
+        gains: &[],
     };
     let h = 0.05;
     // a nontrivial iterate: predictor-like increments and multipliers
@@ -221,6 +222,7 @@ fn residual_mode_matches_full_and_keeps_matrices() {
             inputs: &inputs,
             damping: &damping,
             stiffness: &stiffness,
+            gains: &[],
         };
         let h = 0.05;
         super::stage_rates(&mut ws, h);

@@ -123,6 +123,7 @@ impl Tangent {
             inputs: held.inputs,
             damping: &negated,
             stiffness: held.stiffness,
+            gains: held.gains,
         };
         let mirror = self.mirror.as_deref().unwrap_or(model);
         evaluate(mirror, &mut sw, &held_sw, h, Mode::Full);
@@ -269,6 +270,7 @@ impl Tangent {
                     inputs: &inputs,
                     damping: held.damping,
                     stiffness: held.stiffness,
+                    gains: held.gains,
                 };
                 evaluate(model, &mut wr, &hi, h, Mode::Residual);
                 for b in 0..nb {
@@ -471,7 +473,7 @@ fn step_for(model: &Model, i: usize, u: f64) -> f64 {
     let act = model
         .joints
         .iter()
-        .flat_map(|jt| &jt.acts)
+        .flat_map(|jt| &jt.acts.list)
         .find(|a| a.input == i);
     if let Some(a) = act {
         let room = (u - a.ctrl[0]).min(a.ctrl[1] - u);

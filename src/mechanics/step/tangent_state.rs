@@ -44,7 +44,8 @@ impl Tangent {
         assert_eq!(du.len(), model.inputs.len() * cols, "tangent: du length");
         assert_eq!(dw.len(), model.narm * cols, "tangent: dw length");
         let damped = model.joints.iter().any(|j| {
-            j.stops.is_some_and(|s| s.damping != 0.0) || j.acts.iter().any(|a| a.bias[1] != 0.0)
+            j.stops.is_some_and(|s| s.damping != 0.0)
+                || j.acts.list.iter().any(|a| a.has_rate_term())
         });
         let mirror = damped.then(|| {
             let mut m = model.clone();
@@ -52,8 +53,8 @@ impl Tangent {
                 if let Some(s) = &mut j.stops {
                     s.damping = -s.damping;
                 }
-                for a in &mut j.acts {
-                    a.bias[1] = -a.bias[1];
+                for a in &mut j.acts.list {
+                    a.rate_sign = -a.rate_sign;
                 }
             }
             Box::new(m)

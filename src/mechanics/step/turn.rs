@@ -32,7 +32,7 @@
 use crate::math::{skew, Mat3, Vec3};
 use crate::mechanics::model::constraint::DotRow;
 use crate::mechanics::model::constraint::LinVec;
-use crate::mechanics::model::joint_actuator::{stage_sum, JointActuator};
+use crate::mechanics::model::joint_actuator::JointActuators;
 use crate::mechanics::model::joint_friction::JointFriction;
 use crate::mechanics::model::stops::Stops;
 
@@ -86,7 +86,7 @@ pub(crate) fn turn_step(
     stops: Option<&Stops>,
     [a, w0]: [f64; 2],
     fric: Option<(&JointFriction, f64)>,
-    (acts, inputs): (&[JointActuator], &[f64]),
+    (acts, inputs, gains): (&JointActuators, &[f64], &[f64]),
     h: f64,
 ) -> TurnStep {
     let x = c0 * ds - s0 * dc;
@@ -106,7 +106,7 @@ pub(crate) fn turn_step(
         let st = fr.step(s0, dt, h);
         (st.force, st.dforce)
     });
-    let (f_act, df_act) = stage_sum(acts, inputs, t0, dt, h);
+    let (f_act, df_act) = acts.stage(inputs, gains, t0, dt, h);
     let f = -k * (t0 + 0.5 * dt) - c_d * dt / h + f_stop - rotor * (dt - h * w0) + f_fric + f_act;
     let (sb, cb) = (s0 + 0.5 * ds, c0 + 0.5 * dc);
     // ∂X/∂(s₁, c₁) = (c₀, −s₀), ∂Y/∂(s₁, c₁) = (s₀, c₀)
@@ -278,7 +278,7 @@ mod tests {
                 None,
                 [ar, w0],
                 fric,
-                (&[], &[]),
+                (&JointActuators::default(), &[], &[]),
                 h,
             );
             assert!((st.dt - dt_true).abs() <= 1e-15 * (1.0 + t0.abs()) + 1e-12 * dt_true.abs());
@@ -309,7 +309,7 @@ mod tests {
                     None,
                     [ar, w0],
                     fric,
-                    (&[], &[]),
+                    (&JointActuators::default(), &[], &[]),
                     h,
                 );
                 let m = turn_step(
@@ -321,7 +321,7 @@ mod tests {
                     None,
                     [ar, w0],
                     fric,
-                    (&[], &[]),
+                    (&JointActuators::default(), &[], &[]),
                     h,
                 );
                 let fs = (p.fs - m.fs) / (2.0 * e);

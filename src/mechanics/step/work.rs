@@ -256,6 +256,8 @@ pub(crate) struct Held<'a> {
     pub damping: &'a [f64],
     /// Per-joint stiffness.
     pub stiffness: &'a [f64],
+    /// Gains `[kp, kv]` of each actuator of the model (two per actuator, `State::gains`).
+    pub gains: &'a [f64],
 }
 
 /// Residual norms of an evaluation.

@@ -163,6 +163,23 @@ fn limits(report: &mut Report, p: &str, j: &JointSpec) {
             );
         }
     }
+    if let Some([lo, hi]) = j.actuatorfrcrange {
+        let field = format!("{p}.actuatorfrcrange");
+        if !limited {
+            report.push(
+                field,
+                format!(
+                    "only revolute and prismatic joints take actuators, not a {} joint",
+                    kind_name(j.kind)
+                ),
+            );
+        } else if !(lo.is_finite() && hi.is_finite() && lo < hi) {
+            report.push(
+                field,
+                format!("must be [lo, hi] with finite lo < hi (got [{lo}, {hi}])"),
+            );
+        }
+    }
     if limited && j.lower.is_none() && j.upper.is_none() {
         for (field, v) in &fields[3..] {
             if v.is_some() {

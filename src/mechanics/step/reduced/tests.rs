@@ -126,6 +126,7 @@ fn assert_reduced_jacobian(def: &ModelDef, stiffness: &[f64], damping: &[f64], b
         inputs: &inputs,
         damping,
         stiffness,
+        gains: &[],
     };
     evaluate(&model, &mut ws, &mut rw, &held, h, true);
     assert!(factor(&model, &mut rw));
@@ -319,6 +320,7 @@ fn one_solve_corrects_the_defects_to_first_order() {
                 inputs: &inputs,
                 damping: &zero,
                 stiffness: &zero,
+                gains: &[],
             };
             let before = worst_rows(&model, &ws.q);
             assert!(before > 1e-2 * scale, "{kind:?}: rows {before:e} before");
