@@ -42,17 +42,15 @@ use thiserror::Error;
 pub const SPLITS: u32 = 4;
 
 /// A fixed sub-step of size `dt` ([`step_state`]); where Newton fails (no convergence, a
-/// singular matrix) it is retaken as two halves, each likewise, `depth` times. Each step taken
+/// singular matrix; not a nearly undetermined motion, which is reported as it is) it is
+/// retaken as two halves, each likewise, `depth` times. Each step taken
 /// is an energy–momentum step. On error the state may have moved by earlier halves (the caller
 /// rolls back).
 fn step_split(model: &Model, state: &mut State, dt: f64, depth: u32) -> Result<(), StepError> {
     match step_state(model, state, dt) {
         Ok(_) => Ok(()),
-        Err(
-            StepError::NoConvergence { .. }
-            | StepError::Singular
-            | StepError::NearlyUndetermined { .. },
-        ) if depth > 0 => {
+        // (not where the motion is nearly undetermined: that failure names its cause)
+        Err(StepError::NoConvergence { .. } | StepError::Singular) if depth > 0 => {
             step_split(model, state, 0.5 * dt, depth - 1)?;
             step_split(model, state, 0.5 * dt, depth - 1)
         }

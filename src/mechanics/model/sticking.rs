@@ -29,54 +29,53 @@
 //! `t₁` is the world x axis projected on the ground (y if the normal is along x), `t₂ = n × t₁`:
 //! for the default ground (`n = +z`), `σ₁`, `σ₂` are the bristle's x and y deflections (m).
 
-use super::contact::{pair_nodes, ContactRt};
-use super::contact_law::YIELD;
-use super::def::{ContactLaw, ModelDef};
+use super::def::ContactLaw;
 use super::joint_friction::{JointFriction, TIME_CONSTANT};
+use super::motion::Motion;
 use super::runtime::Model;
-use super::tree_dynamics::{c, mv, Motion, Real, TreeDynamics, Unsupported};
+use super::scalar::{c, cv, mv, Real};
 use crate::math::Vec3;
 use nalgebra::Vector3;
 
 /// A ground point touching at the operating point.
 #[derive(Clone, Debug)]
-struct Touch {
+pub(super) struct Touch {
     /// The shape's name and the point's index among the shape's points (0-based).
-    shape: String,
-    point: usize,
-    body: usize,
+    pub(super) shape: String,
+    pub(super) point: usize,
+    pub(super) body: usize,
     /// Body axes, from the centre of mass, m.
-    x: Vec3,
-    radius: f64,
-    law: ContactLaw,
+    pub(super) x: Vec3,
+    pub(super) radius: f64,
+    pub(super) law: ContactLaw,
     /// Offset of its two bristle states in `σ` (`None`: no friction, μ = 0).
-    at: Option<usize>,
+    pub(super) at: Option<usize>,
 }
 
 /// A joint coordinate with friction.
 #[derive(Clone, Debug)]
-struct Stuck {
-    joint: String,
+pub(super) struct Stuck {
+    pub(super) joint: String,
     /// Its index in `q`, and among the joint's coordinates.
-    coord: usize,
-    k: usize,
-    dofs: usize,
-    friction: JointFriction,
+    pub(super) coord: usize,
+    pub(super) k: usize,
+    pub(super) dofs: usize,
+    pub(super) friction: JointFriction,
     /// Offset of its bristle state in `σ`.
-    at: usize,
+    pub(super) at: usize,
 }
 
 /// The sticking bristles and touching points of an operating point (module formulas).
 #[derive(Clone, Debug, Default)]
 pub struct Sticking {
-    normal: Vec3,
-    height: f64,
-    tangents: [Vec3; 2],
-    touches: Vec<Touch>,
-    joints: Vec<Stuck>,
+    pub(super) normal: Vec3,
+    pub(super) height: f64,
+    pub(super) tangents: [Vec3; 2],
+    pub(super) touches: Vec<Touch>,
+    pub(super) joints: Vec<Stuck>,
     /// `σ` at the operating point: contact bristles (2 per point with friction), then joint
     /// bristles (1 per coordinate), m or rad.
-    sigma0: Vec<f64>,
+    pub(super) sigma0: Vec<f64>,
 }
 
 /// `ψ(z)` of `contact_law`, in any scalar.
@@ -89,7 +88,7 @@ fn psi<T: Real>(z: T) -> T {
 }
 
 /// The ground's tangent axes (module docs).
-fn tangent_axes(n: &Vec3) -> [Vec3; 2] {
+pub(super) fn tangent_axes(n: &Vec3) -> [Vec3; 2] {
     let pick = if n.x.abs() < 0.9 {
         Vec3::x()
     } else {
@@ -99,107 +98,7 @@ fn tangent_axes(n: &Vec3) -> [Vec3; 2] {
     [t1, n.cross(&t1)]
 }
 
-fn cv<T: Real>(v: &Vec3) -> Vector3<T> {
-    v.map(c)
-}
-
 impl Sticking {
-    /// The touching points and bristles of `model` at `(q, ν)` (`td`'s coordinates), with the
-    /// state's contact bristles `bristle` (3 per ground point, world) and joint bristles `fric`
-    /// (`JointRt::fric0`). Friction is not yet checked ([`Sticking::check`]).
-    ///
-    /// # Errors
-    /// [`Unsupported::Touching`] when two bodies' shapes touch at `q`.
-    pub(crate) fn at(
-        td: &TreeDynamics,
-        model: &Model,
-        q: &[f64],
-        bristle: &[f64],
-        fric: &[f64],
-    ) -> Result<Self, Unsupported> {
-        let def: &ModelDef = model.def();
-        let ct: &ContactRt = &model.contact;
-        let mo = td.motion(q, &vec![0.0; q.len()], None);
-        let mut out = Self::default();
-        if !ct.features.is_empty() {
-            // the nodes of every body at q: centre of mass and directors
-            let mut nodes = vec![0.0; 12 * td.n_bodies()];
-            for b in 0..td.n_bodies() {
-                let (pg, _) = td.com_of(&mo, b);
-                for i in 0..3 {
-                    nodes[12 * b + i] = pg[i];
-                    for k in 0..3 {
-                        nodes[12 * b + 3 * (k + 1) + i] = mo.r[b][(i, k)];
-                    }
-                }
-            }
-            for f in &ct.features {
-                let (qa, qb) = pair_nodes(&nodes, f);
-                if f.gap(&f.invariants(&qa, &qb)) < 0.0 {
-                    return Err(Unsupported::Touching(
-                        def.contact.shapes[f.shapes.0].name.clone(),
-                        def.contact.shapes[f.shapes.1].name.clone(),
-                    ));
-                }
-            }
-        }
-        let mut at = 0;
-        if let Some(g) = &ct.ground {
-            out.normal = g.normal;
-            out.height = g.height;
-            out.tangents = tangent_axes(&g.normal);
-            let mut seen = vec![0; def.contact.shapes.len()];
-            for (k, p) in g.points.iter().enumerate() {
-                let point = seen[p.shape];
-                seen[p.shape] += 1;
-                let arm = mo.r[p.body] * (td.body_com(p.body) + p.x);
-                let x = g.height + p.radius - g.normal.dot(&(mo.o[p.body] + arm));
-                if x <= 0.0 {
-                    continue;
-                }
-                let friction = p.law.friction > 0.0;
-                if friction {
-                    let s = Vec3::new(bristle[3 * k], bristle[3 * k + 1], bristle[3 * k + 2]);
-                    out.sigma0.extend(out.tangents.iter().map(|t| t.dot(&s)));
-                }
-                out.touches.push(Touch {
-                    shape: def.contact.shapes[p.shape].name.clone(),
-                    point,
-                    body: p.body,
-                    x: p.x,
-                    radius: p.radius,
-                    law: p.law,
-                    at: friction.then_some(at),
-                });
-                if friction {
-                    at += 2;
-                }
-            }
-        }
-        for (j, jt) in model.joints.iter().enumerate() {
-            let (Some(fr), Some(coord)) = (jt.friction, td.joint_at(j)) else {
-                continue;
-            };
-            if td.is_spherical(j) {
-                continue;
-            }
-            let dofs = def.joints[j].kind.dof();
-            for k in 0..dofs {
-                out.sigma0.push(fric[jt.fric0 + k]);
-                out.joints.push(Stuck {
-                    joint: def.joints[j].name.clone(),
-                    coord: coord + k,
-                    k,
-                    dofs,
-                    friction: fr,
-                    at,
-                });
-                at += 1;
-            }
-        }
-        Ok(out)
-    }
-
     /// Number of bristle states `σ`.
     #[must_use]
     pub fn n(&self) -> usize {
@@ -257,18 +156,18 @@ impl Sticking {
         out
     }
 
-    /// Per touching point: the arm `R (c + X)`, the normal force `f` and the friction `F` (world)
+    /// Per touching point (bodies' centres of mass `coms`, body frames): the arm `R (c + X)`, the normal force `f` and the friction `F` (world)
     /// at `m` with bristles `sigma`, and the contact point's arm `R (c + X) − r n`.
-    fn point_loads<T: Real>(
+    pub(super) fn point_loads<T: Real>(
         &self,
-        td: &TreeDynamics,
+        coms: &[Vec3],
         m: &Motion<T>,
         sigma: &[T],
         t: &Touch,
     ) -> (Vector3<T>, T, Vector3<T>, Vector3<T>) {
         let n = cv::<T>(&self.normal);
         let (k, d) = (c::<T>(t.law.stiffness), c::<T>(t.law.damping));
-        let arm = mv(&m.r[t.body], &cv::<T>(&(td.body_com(t.body) + t.x)));
+        let arm = mv(&m.r[t.body], &cv::<T>(&(coms[t.body] + t.x)));
         let p = m.o[t.body] + arm;
         let pdot = m.v[t.body] + m.w[t.body].cross(&arm);
         let x = c::<T>(self.height + t.radius) - n.dot(&p);
@@ -289,7 +188,7 @@ impl Sticking {
     /// centres of mass) and moments `ne` (about them), world frame, per body.
     pub(crate) fn body_loads<T: Real>(
         &self,
-        td: &TreeDynamics,
+        coms: &[Vec3],
         m: &Motion<T>,
         sigma: &[T],
         fe: &mut [Vector3<T>],
@@ -297,10 +196,10 @@ impl Sticking {
     ) {
         let n = cv::<T>(&self.normal);
         for t in &self.touches {
-            let (arm, f, fr, carm) = self.point_loads(td, m, sigma, t);
+            let (arm, f, fr, carm) = self.point_loads(coms, m, sigma, t);
             let b = t.body;
             // arms from the frame origin less the centre of mass's: R X, R X − r n
-            let rc = mv(&m.r[b], &cv::<T>(&td.body_com(b)));
+            let rc = mv(&m.r[b], &cv::<T>(&coms[b]));
             fe[b] += n * f + fr;
             ne[b] += (arm - rc).cross(&(n * f)) + (carm - rc).cross(&fr);
         }
@@ -315,13 +214,12 @@ impl Sticking {
     }
 
     /// The bristles' rates `σ̇` at `m` (module formulas).
-    pub(crate) fn rates<T: Real>(&self, td: &TreeDynamics, m: &Motion<T>, nu: &[T]) -> Vec<T> {
+    pub(crate) fn rates<T: Real>(&self, coms: &[Vec3], m: &Motion<T>, nu: &[T]) -> Vec<T> {
         let mut out = vec![T::zero(); self.n()];
         let n = cv::<T>(&self.normal);
         for t in &self.touches {
             let Some(at) = t.at else { continue };
-            let carm =
-                mv(&m.r[t.body], &cv::<T>(&(td.body_com(t.body) + t.x))) - n * c::<T>(t.radius);
+            let carm = mv(&m.r[t.body], &cv::<T>(&(coms[t.body] + t.x))) - n * c::<T>(t.radius);
             let vc = m.v[t.body] + m.w[t.body].cross(&carm);
             for i in 0..2 {
                 out[at + i] = cv::<T>(&self.tangents[i]).dot(&vc);
@@ -332,48 +230,11 @@ impl Sticking {
         }
         out
     }
-
-    /// Whether every bristle sticks at `(q, ν)` with `σ₀` (module docs).
-    ///
-    /// # Errors
-    /// [`Unsupported::Sliding`] naming the first that slides (or a contact pulling apart).
-    pub(crate) fn check(
-        &self,
-        td: &TreeDynamics,
-        q: &[f64],
-        nu: &[f64],
-    ) -> Result<(), Unsupported> {
-        let m = td.motion(q, nu, None);
-        for t in &self.touches {
-            let (_, f, fr, _) = self.point_loads(td, &m, &self.sigma0, t);
-            let name = || format!("contact.{} (point {})", t.shape, t.point + 1);
-            if t.at.is_some() && !(f > 0.0 && fr.norm() <= YIELD * t.law.friction * f) {
-                return Err(Unsupported::Sliding(
-                    name(),
-                    percent(fr.norm() / (t.law.friction * f)),
-                ));
-            }
-        }
-        let mut gen = vec![0.0; q.len()];
-        self.joint_loads(nu, &self.sigma0, &mut gen);
-        for s in &self.joints {
-            let r = gen[s.coord].abs() / s.friction.limit;
-            if r > YIELD {
-                let name = if s.dofs == 1 {
-                    format!("joint.{}", s.joint)
-                } else {
-                    format!("joint.{} (coordinate {})", s.joint, s.k + 1)
-                };
-                return Err(Unsupported::Sliding(name, percent(r)));
-            }
-        }
-        Ok(())
-    }
 }
 
 /// `r` in percent, for messages (a pulling contact, `r` not finite: 100 %+).
 #[allow(clippy::cast_possible_truncation, clippy::cast_sign_loss)]
-fn percent(r: f64) -> u32 {
+pub(super) fn percent(r: f64) -> u32 {
     if r.is_finite() {
         (100.0 * r).round().clamp(0.0, 1e6) as u32
     } else {

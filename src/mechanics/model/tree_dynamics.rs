@@ -43,50 +43,15 @@
 use super::def::{JointType, ModelDef};
 use super::joint::joint_frame;
 use super::joint_actuator::JointActuators;
+pub use super::motion::Motion;
 use super::runtime::Model;
+pub use super::scalar::{c, Real};
+use super::scalar::{cm, cv, hat, mm, mv};
 use super::sticking::{lift_sigma, Sticking};
 use super::stops::Stops;
+pub use super::unsupported::Unsupported;
 use crate::math::{Mat3, Vec3};
-use nalgebra::{Matrix3, RealField, Vector3};
-
-/// A real scalar the dynamics can be evaluated in: `f64`, or a dual number.
-pub trait Real: RealField + Copy {}
-impl<T: RealField + Copy> Real for T {}
-
-/// `x` as a `T`.
-pub fn c<T: Real>(x: f64) -> T {
-    nalgebra::convert(x)
-}
-
-fn cv<T: Real>(v: &Vec3) -> Vector3<T> {
-    v.map(c)
-}
-
-fn cm<T: Real>(m: &Mat3) -> Matrix3<T> {
-    m.map(c)
-}
-
-fn hat<T: Real>(a: &Vector3<T>) -> Matrix3<T> {
-    let z = T::zero();
-    Matrix3::new(z, -a[2], a[1], a[2], z, -a[0], -a[1], a[0], z)
-}
-
-/// `a b` (3 × 3) written out: nalgebra's generic product, which dual numbers take, is several
-/// times slower than these nine dot products.
-#[inline]
-pub(crate) fn mm<T: Real>(a: &Matrix3<T>, b: &Matrix3<T>) -> Matrix3<T> {
-    Matrix3::from_fn(|i, j| a[(i, 0)] * b[(0, j)] + a[(i, 1)] * b[(1, j)] + a[(i, 2)] * b[(2, j)])
-}
-
-/// `a v` (3 × 3 by 3) written out (see [`mm`]).
-#[inline]
-pub(crate) fn mv<T: Real>(a: &Matrix3<T>, v: &Vector3<T>) -> Vector3<T> {
-    Vector3::new(
-        a[(0, 0)] * v[0] + a[(0, 1)] * v[1] + a[(0, 2)] * v[2],
-        a[(1, 0)] * v[0] + a[(1, 1)] * v[1] + a[(1, 2)] * v[2],
-        a[(2, 0)] * v[0] + a[(2, 1)] * v[1] + a[(2, 2)] * v[2],
-    )
-}
+use nalgebra::{Matrix3, Vector3};
 
 /// Rotation by `t` about the unit axis `n`.
 fn rot<T: Real>(n: &Vector3<T>, t: T) -> Matrix3<T> {
@@ -191,43 +156,6 @@ enum Parent {
     Free(usize),
 }
 
-/// Why a model has no minimal-coordinate dynamics here.
-#[derive(Clone, Debug, PartialEq, Eq)]
-pub enum Unsupported {
-    /// A joint closes a loop (refused where only trees are supported: the FMU's directional
-    /// derivatives, the `joint.J.qdd` outputs).
-    Loop(String),
-    /// The closed loops cannot be put in independent coordinates at this state.
-    Closure(String),
-    /// The model has collision shapes.
-    Contact,
-    /// A joint has Coulomb friction.
-    Friction(String),
-    /// A joint follows another through a coupling.
-    Coupling(String),
-    /// Two bodies' shapes touch at the operating point (their names).
-    Touching(String, String),
-    /// A bristle slides at the operating point: its name and its load, percent of the limit.
-    Sliding(String, u32),
-    /// Closed loops or couplings with touching contacts or joint friction.
-    LoopSticking,
-}
-
-impl std::fmt::Display for Unsupported {
-    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
-        match self {
-            Self::Loop(j) => write!(f, "joint '{j}' closes a kinematic loop; closed loops are linearised by `triad linearize` only (in independent coordinates), not here"),
-            Self::Closure(why) => write!(f, "{why}"),
-            Self::Contact => write!(f, "the model has collision shapes; contact is linearised by `triad linearize` only (its bristles are states there), not here"),
-            Self::Friction(j) => write!(f, "joint '{j}' has Coulomb friction; joint friction is linearised by `triad linearize` only (its bristle is a state there), not here"),
-            Self::Touching(a, b) => write!(f, "shapes '{a}' and '{b}' touch at the operating point; linear models cover contact with the ground only (move the point, or leave the pair out)"),
-            Self::Sliding(what, r) => write!(f, "{what} slides at the operating point (its friction at {r}% of its limit; a linear model needs every bristle to stick, below {:.0}%: it has no continuous-time limit while it slides)", 100.0 * super::contact_law::YIELD),
-            Self::LoopSticking => write!(f, "closed loops or couplings together with touching contacts or joint friction have no linear model here yet"),
-            Self::Coupling(j) => write!(f, "joint '{j}' follows another joint through a [[coupling]]; coupled joints are linearised by `triad linearize` only (in independent coordinates), not here"),
-        }
-    }
-}
-
 /// Whether `def` has a minimal-coordinate dynamics in tree coordinates alone: a tree (no
 /// loop-closing joint, no coupling) that [`linearizable`] admits.
 ///
@@ -258,25 +186,6 @@ pub fn linearizable(def: &ModelDef) -> Result<(), Unsupported> {
         return Err(Unsupported::Friction(j.name.clone()));
     }
     Ok(())
-}
-
-/// Per body: pose, twist and acceleration (world frame; `v`, `a` of the frame origin).
-#[derive(Clone, Debug)]
-pub struct Motion<T: Real> {
-    /// Frame origin.
-    pub o: Vec<Vector3<T>>,
-    /// Rotation world ← body.
-    pub r: Vec<Matrix3<T>>,
-    /// Velocity of the frame origin.
-    pub v: Vec<Vector3<T>>,
-    /// Angular velocity.
-    pub w: Vec<Vector3<T>>,
-    /// Acceleration of the frame origin.
-    pub a: Vec<Vector3<T>>,
-    /// Angular acceleration.
-    pub al: Vec<Vector3<T>>,
-    /// Per rate: the twist it gives its subtree, `(ω_k, u_k)` about the point `p_k`.
-    cols: Vec<(Vector3<T>, Vector3<T>, Vector3<T>)>,
 }
 
 impl TreeDynamics {
@@ -533,6 +442,11 @@ impl TreeDynamics {
         self.com[b]
     }
 
+    /// Centres of mass of every body, body frames, m.
+    pub(crate) fn body_coms(&self) -> &[Vec3] {
+        &self.com
+    }
+
     /// The touching points and friction bristles of the operating point (`sticking`).
     #[must_use]
     pub fn sticking(&self) -> &Sticking {
@@ -547,7 +461,7 @@ impl TreeDynamics {
     /// The bristles' rates `σ̇` at `(q, ν)` (`sticking`).
     pub fn bristle_rates<T: Real>(&self, q: &[T], nu: &[T]) -> Vec<T> {
         let m = self.motion(q, nu, None);
-        self.sticking.rates(self, &m, nu)
+        self.sticking.rates(&self.com, &m, nu)
     }
 
     /// Mass of body `b`, kg.
@@ -642,7 +556,8 @@ impl TreeDynamics {
                     ne[p] -= t;
                 }
             }
-            self.sticking.body_loads(self, &m, sigma, &mut fe, &mut ne);
+            self.sticking
+                .body_loads(&self.com, &m, sigma, &mut fe, &mut ne);
         }
         for b in 0..nb {
             let mass = c::<T>(self.mass[b]);

@@ -167,13 +167,16 @@ impl Operating {
     /// Fits the sticking bristles `σ` to the point: the accelerations `ν̇ = ν̇₀ + G σ` (affine
     /// in `σ`) closest to 0 in the kinetic metric, `min |Lᵀ(ν̇₀ + G σ)|` (`M = L Lᵀ`), the
     /// least-norm `σ` (bristle stresses that move nothing stay 0). Returns `|ν̇|` before and
-    /// after.
+    /// after (0, 0 without bristles).
     ///
     /// # Errors
     /// A singular mass matrix.
     pub fn fit_bristles(&mut self) -> Result<(f64, f64), String> {
         let td = &self.dynamics;
         let ns = td.sticking().n();
+        if ns == 0 {
+            return Ok((0.0, 0.0));
+        }
         let (q, nu, u) = (&self.q, &self.nu, &self.u);
         let n = q.len();
         let mut st = td.sticking().clone();
@@ -182,9 +185,6 @@ impl Operating {
         td0.set_sticking(st);
         let (nud0, _) = td0.accelerations(q, nu, u)?;
         let before = nud0.iter().map(|x| x * x).sum::<f64>().sqrt();
-        if ns == 0 {
-            return Ok((before, before));
-        }
         let mass = td0.mass_matrix(q);
         let chol = mass
             .clone()
