@@ -205,11 +205,12 @@ impl Sticking {
         }
     }
 
-    /// The joint friction loads `−k s − c q̇` per coordinate of `q` (len `n`), at rates `nu`.
-    pub(crate) fn joint_loads<T: Real>(&self, nu: &[T], sigma: &[T], out: &mut [T]) {
+    /// Subtracts the joint friction loads `−k s − c q̇` from the residual `res` (len `n`, one
+    /// per coordinate), at rates `nu`.
+    pub(crate) fn joint_loads<T: Real>(&self, nu: &[T], sigma: &[T], res: &mut [T]) {
         for s in &self.joints {
             let k = s.friction.stiffness();
-            out[s.coord] -= sigma[s.at] * c::<T>(k) + nu[s.coord] * c::<T>(k * TIME_CONSTANT);
+            res[s.coord] += sigma[s.at] * c::<T>(k) + nu[s.coord] * c::<T>(k * TIME_CONSTANT);
         }
     }
 

@@ -135,6 +135,7 @@ impl Sticking {
                 ));
             }
         }
+        // the loads, as the residual's negated terms
         let mut gen = vec![0.0; q.len()];
         self.joint_loads(nu, &self.sigma0, &mut gen);
         for s in &self.joints {

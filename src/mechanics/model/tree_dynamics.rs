@@ -611,11 +611,7 @@ impl TreeDynamics {
                     res[jd.at + k] -= gen;
                 }
             }
-            let mut fric = vec![T::zero(); res.len()];
-            self.sticking.joint_loads(nu, sigma, &mut fric);
-            for (r, f) in res.iter_mut().zip(fric) {
-                *r -= f;
-            }
+            self.sticking.joint_loads(nu, sigma, &mut res);
         }
         res
     }
