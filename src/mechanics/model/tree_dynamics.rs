@@ -460,6 +460,9 @@ impl TreeDynamics {
 
     /// The bristles' rates `σ̇` at `(q, ν)` (`sticking`).
     pub fn bristle_rates<T: Real>(&self, q: &[T], nu: &[T]) -> Vec<T> {
+        if self.sticking.n() == 0 {
+            return Vec::new();
+        }
         let m = self.motion(q, nu, None);
         self.sticking.rates(&self.com, &m, nu)
     }
