@@ -127,13 +127,10 @@ fn integrator_rates(m: &Model, s0: &State, h: f64) -> Vec<f64> {
     s1.iter().zip(&s2).map(|(a, b)| 2.0 * b - a).collect()
 }
 
-/// In contact and moving (pressed in, sliding slowly under the bristle, spinning), with the
-/// bristle loaded by earlier steps: the accelerations and the bristles' rates of the linear
-/// model's dynamics are the integrator's as h → 0 (to 1e-6 of their size), so the
-/// continuous-time limits of the step's laws (`sticking`'s formulas) are right.
-#[test]
-fn the_dynamics_with_contact_is_the_integrators_limit() {
-    for (name, text, u) in [
+/// The ball (pressed in, moving, spinning) and the box under loads, 5 steps of 0.1 ms into
+/// the motion (the bristles loaded): name, model, state, inputs.
+fn loaded() -> Vec<(&'static str, Model, State, Vec<f64>)> {
+    [
         (
             "ball",
             ball([0.002, -0.001, 0.003], [0.03, 0.01, -0.5]),
@@ -144,12 +141,26 @@ fn the_dynamics_with_contact_is_the_integrators_limit() {
             resting_box(),
             vec![1.5, -0.8, 2.0, 0.05, -0.03, 0.02],
         ),
-    ] {
+    ]
+    .into_iter()
+    .map(|(name, text, u)| {
         let (m, mut s) = spec_model(&text);
         s.inputs_mut().copy_from_slice(&u);
         for _ in 0..5 {
             step(&m, &mut s, 1e-4).unwrap();
         }
+        (name, m, s, u)
+    })
+    .collect()
+}
+
+/// In contact and moving (pressed in, sliding slowly under the bristle, spinning), with the
+/// bristle loaded by earlier steps: the accelerations and the bristles' rates of the linear
+/// model's dynamics are the integrator's as h → 0 (to 1e-6 of their size), so the
+/// continuous-time limits of the step's laws (`sticking`'s formulas) are right.
+#[test]
+fn the_dynamics_with_contact_is_the_integrators_limit() {
+    for (name, m, s, _) in loaded() {
         assert!(
             max_abs(s.contact_bristles().iter().copied()) > 1e-7,
             "{name}: the bristles are loaded"
@@ -171,23 +182,7 @@ fn the_dynamics_with_contact_is_the_integrators_limit() {
 /// differences agree to their own accuracy (1e-7 relative).
 #[test]
 fn a_and_b_are_the_derivatives_of_the_dynamics() {
-    for (name, text, u) in [
-        (
-            "ball",
-            ball([0.002, -0.001, 0.003], [0.03, 0.01, -0.5]),
-            vec![0.7, -0.4, 1.0],
-        ),
-        (
-            "box",
-            resting_box(),
-            vec![1.5, -0.8, 2.0, 0.05, -0.03, 0.02],
-        ),
-    ] {
-        let (m, mut s) = spec_model(&text);
-        s.inputs_mut().copy_from_slice(&u);
-        for _ in 0..5 {
-            step(&m, &mut s, 1e-4).unwrap();
-        }
+    for (name, m, s, u) in loaded() {
         let op = Operating::of(&m, &s).unwrap();
         let lin = op.linearize(&[]).unwrap();
         let x = op.x();

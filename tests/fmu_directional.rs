@@ -18,22 +18,6 @@ use triad::ffi::types::*;
 use triad::variables::linear::{quantity, states};
 use triad::variables::Causality;
 
-fn dd(f: &Fmu, unknowns: &[u32], knowns: &[u32], seed: &[f64]) -> (fmi2Status, Vec<f64>) {
-    let mut out = vec![f64::NAN; unknowns.len()];
-    let s = unsafe {
-        fmi2GetDirectionalDerivative(
-            f.c,
-            unknowns.as_ptr(),
-            unknowns.len(),
-            knowns.as_ptr(),
-            knowns.len(),
-            seed.as_ptr(),
-            out.as_mut_ptr(),
-        )
-    };
-    (s, out)
-}
-
 /// The robot arm after 0.2 s under torques: its states, derivatives and inputs.
 fn arm() -> (TestModel, Fmu, Vec<u32>, Vec<u32>, Vec<u32>) {
     let m = shipped("robot_arm");

@@ -16,28 +16,11 @@ use fmu_support::api3::{fmi3GetAdjointDerivative, fmi3GetDirectionalDerivative};
 use fmu_support::fmi3::{shipped, Fmu3};
 use fmu_support::*;
 use triad::ffi::fmi3::types::{fmi3Error, fmi3OK};
-use triad::ffi::getset::fmi2GetDirectionalDerivative;
 use triad::ffi::types::*;
 use triad::mechanics::{JointInitial, Operating, Quantity};
 use triad::sim::Simulation;
 use triad::variables::linear::{differentiable, quantity, states};
 use triad::variables::{Accessor, Causality};
-
-fn dd(f: &Fmu, unknowns: &[u32], knowns: &[u32], seed: &[f64]) -> (fmi2Status, Vec<f64>) {
-    let mut out = vec![f64::NAN; unknowns.len()];
-    let s = unsafe {
-        fmi2GetDirectionalDerivative(
-            f.c,
-            unknowns.as_ptr(),
-            unknowns.len(),
-            knowns.as_ptr(),
-            knowns.len(),
-            seed.as_ptr(),
-            out.as_mut_ptr(),
-        )
-    };
-    (s, out)
-}
 
 /// The example gripper without its finger's Coulomb friction (no derivative where it
 /// sticks), the fingers half closed (off their stops).

@@ -465,3 +465,21 @@ impl Rng {
         (self.next() >> 11) as f64 / (1u64 << 53) as f64 <= p
     }
 }
+
+/// `fmi2GetDirectionalDerivative` of `unknowns` along `seed` over `knowns`: the status and
+/// the values (NaN where nothing was written).
+pub fn dd(f: &Fmu, unknowns: &[u32], knowns: &[u32], seed: &[f64]) -> (fmi2Status, Vec<f64>) {
+    let mut out = vec![f64::NAN; unknowns.len()];
+    let s = unsafe {
+        triad::ffi::getset::fmi2GetDirectionalDerivative(
+            f.c,
+            unknowns.as_ptr(),
+            unknowns.len(),
+            knowns.as_ptr(),
+            knowns.len(),
+            seed.as_ptr(),
+            out.as_mut_ptr(),
+        )
+    };
+    (s, out)
+}
