@@ -10,7 +10,7 @@ mod common;
 use common::spec_model;
 use common::trees::ROTOR;
 use nalgebra::{DMatrix, DVector};
-use triad::mechanics::{step, Model, Operating, State};
+use triad::mechanics::{step, Model, Operating, Quantity, State};
 
 const K: f64 = 1e5;
 const G: f64 = 9.81;
@@ -329,6 +329,55 @@ fn joint_friction_sticks_as_a_spring_and_damper() {
         assert!(
             (e.re - re).abs() < 1e-9 * im && (e.im.abs() - im).abs() < 1e-9 * im,
             "{ev:?}"
+        );
+    }
+}
+
+/// The contact forces as outputs (`contact.C.f[i]`, `Quantity::ContactForce`): at rest they
+/// carry the weight (the ball's and the box's `m g` up, nothing sideways), and in motion, with
+/// loaded bristles, their rows of `C` are the derivatives (central differences of the same
+/// force, 1e-7 relative; the bristle columns included).
+#[test]
+fn contact_forces_are_outputs_with_exact_rows() {
+    for (text, mass) in [(ball([0.0; 3], [0.0; 3]), 1.0), (resting_box(), 2.0)] {
+        let (m, s) = spec_model(&text);
+        let op = Operating::of(&m, &s).unwrap();
+        let ys: Vec<Quantity> = (0..3).map(|i| Quantity::ContactForce(0, i)).collect();
+        let lin = op.linearize(&ys).unwrap();
+        let weight = mass * G;
+        assert!(lin.y0[0].abs() < 1e-9 * weight && lin.y0[1].abs() < 1e-9 * weight);
+        assert!((lin.y0[2] - weight).abs() < 1e-9 * weight, "{:?}", lin.y0);
+    }
+    for (name, m, s, _) in loaded() {
+        let op = Operating::of(&m, &s).unwrap();
+        let ys: Vec<Quantity> = (0..3).map(|i| Quantity::ContactForce(0, i)).collect();
+        let lin = op.linearize(&ys).unwrap();
+        let x = op.x();
+        let n = op.dynamics.n();
+        let force = |x: &[f64]| -> Vec<f64> {
+            let (q, nu, sigma) = (&x[..n], &x[n..2 * n], &x[2 * n..]);
+            ys.iter()
+                .map(|y| op.dynamics.quantity_with(q, nu, &vec![0.0; n], sigma, *y))
+                .collect()
+        };
+        let mut fd = DMatrix::zeros(3, x.len());
+        for j in 0..x.len() {
+            let e = 1e-6 * (1.0 + x[j].abs());
+            let (mut xp, mut xm) = (x.clone(), x.clone());
+            xp[j] += e;
+            xm[j] -= e;
+            let (fp, fm) = (force(&xp), force(&xm));
+            for i in 0..3 {
+                fd[(i, j)] = (fp[i] - fm[i]) / (2.0 * e);
+            }
+        }
+        let rel = (&lin.c - &fd).norm() / fd.norm();
+        eprintln!("{name}: |C − differences| / |C| = {rel:.2e}");
+        assert!(rel < 1e-7, "{name}: {rel:e}");
+        assert!(
+            lin.d.norm() <= 1e-12 * lin.c.norm(),
+            "{name}: D {}",
+            lin.d.norm()
         );
     }
 }

@@ -51,7 +51,7 @@ pub struct LinearizeArgs {
     pub inputs: Vec<String>,
     /// The outputs y, in table order (comma-separated globs; default: the joint coordinates
     /// and rates, and a floating base's r, v, w). Poses, twists, joint values, system.energy,
-    /// system.p and system.L can be differentiated.
+    /// system.p, system.L and the contact forces contact.C.f can be differentiated.
     #[arg(long, value_name = "PATTERN[,PATTERN]")]
     pub outputs: Vec<String>,
     /// Closed loops: the joints whose coordinates are the independent coordinates of x

@@ -86,6 +86,7 @@ pub fn quantity(acc: Accessor) -> Option<Quantity> {
         Accessor::Energy => Quantity::Energy,
         Accessor::P(i) => Quantity::P(i),
         Accessor::L(i) => Quantity::L(i),
+        Accessor::ContactForce { shape, i } => Quantity::ContactForce(shape, i),
         _ => return None,
     })
 }

@@ -15,6 +15,7 @@
 //! Cost: `2n + m` passes of O(bodies) each, one LU of the `n × n` mass matrix and one solve per
 //! direction: O(n·N + n³).
 
+use super::sticking::lift_sigma;
 use super::tree_dynamics::{c, TreeDynamics};
 use crate::math::Mat3;
 use nalgebra::{DMatrix, DVector, Matrix3, Vector3};
@@ -51,6 +52,9 @@ pub enum Quantity {
     P(usize),
     /// Angular momentum component `i` about the world origin.
     L(usize),
+    /// Component `i` of the ground's force on collision shape `shape`'s body through it
+    /// (its touching points' normal and friction forces, `sticking`), N, world frame.
+    ContactForce(usize, usize),
 }
 
 /// A linear model at an operating point (module formulas). Matrices are dense, row-major
@@ -100,12 +104,24 @@ fn quat_of<T: super::tree_dynamics::Real>(m0: &Mat3, th: &Vector3<T>) -> [T; 4] 
 }
 
 impl TreeDynamics {
-    /// The value of output `y` at `(q, ν, ν̇)`.
+    /// The value of output `y` at `(q, ν, ν̇)`, the bristles at the operating point's values.
     pub fn quantity<T: super::tree_dynamics::Real>(
         &self,
         q: &[T],
         nu: &[T],
         nud: &[T],
+        y: Quantity,
+    ) -> T {
+        self.quantity_with(q, nu, nud, &lift_sigma(self.sticking()), y)
+    }
+
+    /// The value of output `y` at `(q, ν, ν̇)` with the bristles at `sigma` (`sticking`).
+    pub fn quantity_with<T: super::tree_dynamics::Real>(
+        &self,
+        q: &[T],
+        nu: &[T],
+        nud: &[T],
+        sigma: &[T],
         y: Quantity,
     ) -> T {
         let m = self.motion(q, nu, None);
@@ -133,6 +149,10 @@ impl TreeDynamics {
             Quantity::Energy => self.energy(q, nu),
             Quantity::P(i) => self.momentum(q, nu).0[i],
             Quantity::L(i) => self.momentum(q, nu).1[i],
+            Quantity::ContactForce(shape, i) => {
+                self.sticking()
+                    .shape_force(self.body_coms(), &m, sigma, shape)[i]
+            }
         }
     }
 
@@ -220,7 +240,7 @@ impl TreeDynamics {
                 put(2 * n + i, s.eps);
             }
             for (k, y) in ys.iter().enumerate() {
-                let v = self.quantity(&qd, &vd, &nud_col, *y).eps;
+                let v = self.quantity_with(&qd, &vd, &nud_col, &sd, *y).eps;
                 if col < nx {
                     cm[(k, col)] = v;
                 } else {

@@ -42,6 +42,8 @@ use nalgebra::Vector3;
 pub(super) struct Touch {
     /// The shape's name and the point's index among the shape's points (0-based).
     pub(super) shape: String,
+    /// Its index among the collision shapes.
+    pub(super) shape_index: usize,
     pub(super) point: usize,
     pub(super) body: usize,
     /// Body axes, from the centre of mass, m.
@@ -203,6 +205,25 @@ impl Sticking {
             fe[b] += n * f + fr;
             ne[b] += (arm - rc).cross(&(n * f)) + (carm - rc).cross(&fr);
         }
+    }
+
+    /// The ground's force on collision shape `shape`'s body through it: its touching points'
+    /// `f n + F` at `m` with bristles `sigma` (world, N; zero where it does not touch).
+    pub(crate) fn shape_force<T: Real>(
+        &self,
+        coms: &[Vec3],
+        m: &Motion<T>,
+        sigma: &[T],
+        shape: usize,
+    ) -> Vector3<T> {
+        let n = cv::<T>(&self.normal);
+        self.touches
+            .iter()
+            .filter(|t| t.shape_index == shape)
+            .fold(Vector3::zeros(), |acc, t| {
+                let (_, f, fr, _) = self.point_loads(coms, m, sigma, t);
+                acc + n * f + fr
+            })
     }
 
     /// Subtracts the joint friction loads `−k s − c q̇` from the residual `res` (len `n`, one

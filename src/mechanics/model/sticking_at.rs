@@ -77,6 +77,7 @@ impl Sticking {
                 }
                 out.touches.push(Touch {
                     shape: def.contact.shapes[p.shape].name.clone(),
+                    shape_index: p.shape,
                     point,
                     body: p.body,
                     x: p.x,
