@@ -302,7 +302,14 @@ pub(crate) fn build(
                                 jd.name
                             ))
                         })?;
-                        Ok(DofRt::Turn(TurnRt { axis: *n, sin, cos }))
+                        let has_a = g.parent.is_some();
+                        let sparse = [SparseRow::new(&sin, has_a), SparseRow::new(&cos, has_a)];
+                        Ok(DofRt::Turn(TurnRt {
+                            axis: *n,
+                            sin,
+                            cos,
+                            sparse,
+                        }))
                     }
                 })
                 .collect::<Result<_, ModelError>>()?

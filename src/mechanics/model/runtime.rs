@@ -85,6 +85,9 @@ pub(crate) struct TurnRt {
     pub sin: DotRow,
     /// `c` of `t = atan2(s, c)`.
     pub cos: DotRow,
+    /// `sin` and `cos` compiled to their non-zero nodes (the joint's parent a body or not),
+    /// for the loads' pass of every Newton evaluation.
+    pub sparse: [super::sparse_row::SparseRow; 2],
 }
 
 /// A joint coordinate that loads act on.

@@ -274,8 +274,9 @@ pub(crate) fn joint_loads(
                         turn += 1;
                         continue;
                     }
-                    let gs = add_row(&tr.sin, -hh * st.fs, fa, fb, &mut ws.cbody, cab);
-                    let gc = add_row(&tr.cos, -hh * st.fc, fa, fb, &mut ws.cbody, cab);
+                    let [ss, sc] = &tr.sparse;
+                    let gs = add_sparse_row(ss, -hh * st.fs, p, jac, (fa, fb, &mut ws.cbody, cab));
+                    let gc = add_sparse_row(sc, -hh * st.fc, p, jac, (fa, fb, &mut ws.cbody, cab));
                     if jac {
                         let xs = (&mut *x_ab, &mut *x_ba, &mut *x_aa, &mut *x_bb);
                         turn_jac(tr, p, (&gs, &gc), &st.jac, -hh, xs);
@@ -345,9 +346,19 @@ pub(crate) fn add_dot_row(
     coef: f64,
     p: &Pair,
     jac: bool,
+    sinks: NodeSinks<'_>,
+) -> [Vec3; 8] {
+    add_sparse_row(&SparseRow::new(row, p.a.is_some()), coef, p, jac, sinks)
+}
+
+/// [`add_dot_row`] of a row already compiled for the pair (`TurnRt::sparse`).
+pub(crate) fn add_sparse_row(
+    sr: &SparseRow,
+    coef: f64,
+    p: &Pair,
+    jac: bool,
     (fa, fb, cb, cab): NodeSinks<'_>,
 ) -> [Vec3; 8] {
-    let sr = SparseRow::new(row, p.a.is_some());
     let mut buf = [Vec3::zeros(); 8];
     let grad = sr.grad_at(&p.qa_bar, &p.qb_bar, &mut buf);
     sr.add_forces(grad, coef, fa, fb);
