@@ -171,3 +171,65 @@ impl Drop for Fmu3 {
         unsafe { fmi3FreeInstance(self.c) };
     }
 }
+
+/// `fmi3GetDirectionalDerivative` of `unknowns` along `seed` over `knowns`, `n` values out (the
+/// unknowns' sizes summed): the status and the values.
+pub fn directional3(
+    f: &Fmu3,
+    unknowns: &[u32],
+    knowns: &[u32],
+    seed: &[f64],
+    n: usize,
+) -> (fmi3Status, Vec<f64>) {
+    let mut out = vec![0.0; n];
+    // SAFETY: the pointers and lengths come from live slices of the stated sizes.
+    let s = unsafe {
+        fmi3GetDirectionalDerivative(
+            f.c,
+            unknowns.as_ptr(),
+            unknowns.len(),
+            knowns.as_ptr(),
+            knowns.len(),
+            seed.as_ptr(),
+            seed.len(),
+            out.as_mut_ptr(),
+            n,
+        )
+    };
+    (s, out)
+}
+
+/// Asserts that `fmi3GetAdjointDerivative` is the transpose of the directional derivative
+/// `jv = J v` of `unknowns` over `knowns`: `wᵀ(J v) = (Jᵀ w)ᵀ v` for a fixed `w`, not zero.
+pub fn assert_adjoint_is_transpose(
+    f: &Fmu3,
+    unknowns: &[u32],
+    knowns: &[u32],
+    v: &[f64],
+    jv: &[f64],
+) {
+    let w: Vec<f64> = (0..jv.len()).map(|i| 0.5 - 0.1 * i as f64).collect();
+    let mut jtw = vec![0.0; v.len()];
+    // SAFETY: the pointers and lengths come from live slices of the stated sizes.
+    let s = unsafe {
+        fmi3GetAdjointDerivative(
+            f.c,
+            unknowns.as_ptr(),
+            unknowns.len(),
+            knowns.as_ptr(),
+            knowns.len(),
+            w.as_ptr(),
+            w.len(),
+            jtw.as_mut_ptr(),
+            jtw.len(),
+        )
+    };
+    assert_eq!(s, fmi3OK, "{}", f.last_message());
+    let lhs: f64 = w.iter().zip(jv).map(|(a, b)| a * b).sum();
+    let rhs: f64 = jtw.iter().zip(v).map(|(a, b)| a * b).sum();
+    assert!(
+        (lhs - rhs).abs() <= 1e-12 * (1.0 + lhs.abs()),
+        "{lhs} {rhs}"
+    );
+    assert!(lhs.abs() > 1e-3);
+}

@@ -108,7 +108,17 @@ impl JointActuator {
     /// `q` (rad or m) and rate `qd` (rad/s or m/s), module formulas, at the state's gains
     /// `gains`; generic over the scalar for the linear models (`tree_dynamics`).
     pub fn torque<T: RealField + Copy>(&self, gains: &[f64], u: T, q: T, qd: T) -> T {
-        let (gain, bias) = self.coefficients(gains);
+        self.torque_with(self.coefficients(gains), u, q, qd)
+    }
+
+    /// [`JointActuator::torque`] at the law's coefficients `(gain, bias)`.
+    fn torque_with<T: RealField + Copy>(
+        &self,
+        (gain, bias): (f64, [f64; 2]),
+        u: T,
+        q: T,
+        qd: T,
+    ) -> T {
         let g = c::<T>(self.gear);
         let u = clamp(u, self.ctrl);
         let f = u * c::<T>(gain) + g * q * c::<T>(bias[0]) + g * qd * c::<T>(bias[1]);
@@ -120,8 +130,8 @@ impl JointActuator {
     /// `q̄ = q0 + dq/2`, `q̇ = dq/h`.
     pub fn stage(&self, gains: &[f64], u: f64, q0: f64, dq: f64, h: f64) -> (f64, f64) {
         let g = self.gear;
-        let tau = self.torque(gains, u, q0 + 0.5 * dq, dq / h);
-        let (_, bias) = self.coefficients(gains);
+        let (gain, bias) = self.coefficients(gains);
+        let tau = self.torque_with((gain, bias), u, q0 + 0.5 * dq, dq / h);
         let df = g * (0.5 * bias[0] + bias[1] / h);
         // the force is clamped where τ/g sits on a bound of the force range
         let f = tau / g;

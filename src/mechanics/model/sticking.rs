@@ -134,12 +134,10 @@ impl Sticking {
             if t.at.is_none() {
                 continue;
             }
-            let single = def
-                .contact
-                .shapes
-                .iter()
-                .find(|s| s.name == t.shape)
-                .is_some_and(|s| matches!(s.kind, super::def::ShapeKind::Sphere { .. }));
+            let single = matches!(
+                def.contact.shapes[t.shape_index].kind,
+                super::def::ShapeKind::Sphere { .. }
+            );
             for i in 1..=2 {
                 out.push(if single {
                     format!("contact.{}.s[{i}]", t.shape)

@@ -35,17 +35,7 @@ impl Sticking {
         let mo = td.motion(q, &vec![0.0; q.len()], None);
         let mut out = Sticking::default();
         if !ct.features.is_empty() {
-            // the nodes of every body at q: centre of mass and directors
-            let mut nodes = vec![0.0; 12 * td.n_bodies()];
-            for b in 0..td.n_bodies() {
-                let (pg, _) = td.com_of(&mo, b);
-                for i in 0..3 {
-                    nodes[12 * b + i] = pg[i];
-                    for k in 0..3 {
-                        nodes[12 * b + 3 * (k + 1) + i] = mo.r[b][(i, k)];
-                    }
-                }
-            }
+            let (nodes, _) = td.nodal(q, &vec![0.0; q.len()]);
             for f in &ct.features {
                 let (qa, qb) = pair_nodes(&nodes, f);
                 if f.gap(&f.invariants(&qa, &qb)) < 0.0 {
@@ -65,7 +55,7 @@ impl Sticking {
             for (k, p) in g.points.iter().enumerate() {
                 let point = seen[p.shape];
                 seen[p.shape] += 1;
-                let arm = mo.r[p.body] * (td.body_com(p.body) + p.x);
+                let arm = mo.r[p.body] * (td.body_coms()[p.body] + p.x);
                 let x = g.height + p.radius - g.normal.dot(&(mo.o[p.body] + arm));
                 if x <= 0.0 {
                     continue;

@@ -437,11 +437,6 @@ impl TreeDynamics {
         m
     }
 
-    /// Centre of mass of body `b`, body frame, m.
-    pub(crate) fn body_com(&self, b: usize) -> Vec3 {
-        self.com[b]
-    }
-
     /// Centres of mass of every body, body frames, m.
     pub(crate) fn body_coms(&self) -> &[Vec3] {
         &self.com

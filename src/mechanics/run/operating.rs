@@ -179,30 +179,27 @@ impl Operating {
         }
         let (q, nu, u) = (&self.q, &self.nu, &self.u);
         let n = q.len();
-        let mut st = td.sticking().clone();
-        st.set_sigma0(&vec![0.0; ns]);
-        let mut td0 = td.clone();
-        td0.set_sticking(st);
-        let (nud0, _) = td0.accelerations(q, nu, u)?;
-        let before = nud0.iter().map(|x| x * x).sum::<f64>().sqrt();
-        let mass = td0.mass_matrix(q);
-        let chol = mass
-            .clone()
+        // ν̇₀ = −M⁻¹ res(σ = 0)
+        let zero = vec![0.0; ns];
+        let res0 = td.residual_with(q, nu, &vec![0.0; n], u, &zero, false);
+        let chol = td
+            .mass_matrix(q)
             .cholesky()
             .ok_or("the joint-space mass matrix is not positive definite")?;
+        let nud0 = chol.solve(&-DVector::from_vec(res0));
+        let before = nud0.norm();
         let lt = chol.l().transpose();
         // G = ∂ν̇/∂σ = −M⁻¹ ∂res/∂σ, one dual pass per bristle
         let (qd, vd, ud) = (lift(q, None), lift(nu, None), lift(u, None));
         let nud_d: Vec<Dual64> = nud0.iter().map(|&x| Dual64::from(x)).collect();
         let mut g = DMatrix::zeros(n, ns);
         for j in 0..ns {
-            let sd = lift(&vec![0.0; ns], Some(j));
-            let res = td0.residual_with(&qd, &vd, &nud_d, &ud, &sd, false);
+            let res = td.residual_with(&qd, &vd, &nud_d, &ud, &lift(&zero, Some(j)), false);
             let r = DVector::from_iterator(n, res.iter().map(|x| -x.eps));
             g.set_column(j, &chol.solve(&r));
         }
         let a = &lt * &g;
-        let b = -(&lt * DVector::from_vec(nud0));
+        let b = -(&lt * nud0);
         let svd = a.svd(true, true);
         let tol = 1e-12 * svd.singular_values.max();
         let sigma = svd.solve(&b, tol)?;
@@ -279,6 +276,13 @@ impl Operating {
                 du.len(),
                 self.u.len()
             ));
+        }
+        if !self.dynamics.sticking().is_empty() {
+            return Err(
+                "directional: the bristle states of contact and joint friction are \
+                        not covered here (Operating::linearize has them)"
+                    .into(),
+            );
         }
         let (dq, dnu) = dx.split_at(nx / 2);
         match &self.loops {
