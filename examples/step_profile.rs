@@ -8,7 +8,7 @@
 //! protocol), the iterations, the stages handed to the multiplier form, and on stderr the
 //! energy balance `E − E₀ − work` at the end. Same settings as `benches/step.rs` (order 2,
 //! h = 1e-3, tolerance 1e-10). Environment: `TRIAD_MULTIPLIERS=1` solves trees in the
-//! multiplier form too, `TRIAD_REDUCED=1` every tree in the reduced form (the default); `TRIAD_ARMATURE=A` puts a rotor inertia A on every joint; `TRIAD_TRACE=1` prints the energy balance, iterations, stages handed back, energy, work, time and the largest body angular velocity after every step; `TRIAD_ORDER4=1` steps with the
+//! multiplier form too, `TRIAD_REDUCED=1` every tree in the reduced form (the default); `TRIAD_ARMATURE=A` puts a rotor inertia A on every joint; `TRIAD_COUPLED=1` makes every second joint follow the one before it (ratio 0.5, as `benches/joint_space.rs`); `TRIAD_TRACE=1` prints the energy balance, iterations, stages handed back, energy, work, time and the largest body angular velocity after every step; `TRIAD_ORDER4=1` steps with the
 //! order-4 composition (`TRIAD_STAGES5=1`: Suzuki's five stages instead of the triple jump).
 use triad::mechanics::{step_state, Model, SolverSettings, State};
 
@@ -54,6 +54,24 @@ fn main() {
     {
         for j in &mut def.joints {
             j.armature = a;
+        }
+    }
+    if std::env::var_os("TRIAD_COUPLED").is_some() {
+        // every second joint follows the one before it at half its angle (benches/joint_space.rs)
+        for k in (0..def.joints.len().saturating_sub(1)).step_by(2) {
+            let qa = match &def.joints[k].initial {
+                triad::mechanics::JointInitial::Coords { q, .. } => {
+                    q.first().copied().unwrap_or(0.0)
+                }
+                triad::mechanics::JointInitial::Spherical { .. } => 0.0,
+            };
+            common::set_q(&mut def.joints[k + 1], &[0.5 * qa], &[]);
+            def.couplings.push(triad::mechanics::CouplingDef {
+                a: k,
+                b: k + 1,
+                ratio: 0.5,
+                offset: 0.0,
+            });
         }
     }
     let h: f64 = args.get(3).and_then(|x| x.parse().ok()).unwrap_or(1e-3);

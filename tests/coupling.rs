@@ -209,6 +209,38 @@ fn coupled_pendulums_keep_energy_minus_work_exact() {
     }
 }
 
+/// The reduced iteration borders the couplings on its tree factors (`step::reduced::couple`):
+/// on the coupled pendulums and the free gripper it takes every stage itself, and its
+/// trajectory is the multiplier form's to the Newton tolerance, couplings held alike.
+#[test]
+fn the_reduced_iteration_solves_coupled_trees_as_the_multiplier_form() {
+    for (name, text, h) in [
+        ("pendulums", COUPLED.to_string(), 0.01),
+        ("gripper", GRIPPER.to_string(), 0.02),
+    ] {
+        let (reduced, mut a) = spec_model(&text);
+        let mut multiplier = reduced.clone();
+        multiplier.set_reduced_solver(false);
+        assert!(reduced.uses_reduced_solver() && !multiplier.uses_reduced_solver());
+        let mut b = State::new(&multiplier);
+        let u: Vec<f64> = (0..a.inputs().len())
+            .map(|k| 0.3 * (k as f64 + 1.0).cos())
+            .collect();
+        set_inputs(&mut a, &u);
+        set_inputs(&mut b, &u);
+        let (mut dq, mut fallbacks) = (0.0_f64, 0);
+        for _ in 0..200 {
+            fallbacks += step(&reduced, &mut a, h).expect("reduced step").fallbacks;
+            step(&multiplier, &mut b, h).expect("multiplier step");
+            let d = a.coordinates().iter().zip(b.coordinates());
+            dq = dq.max(d.map(|(x, y)| (x - y).abs()).fold(0.0, f64::max));
+        }
+        eprintln!("{name}: |Δq| {dq:.2e}, {fallbacks} stages handed back");
+        assert_eq!(fallbacks, 0, "{name}: stages handed to the multiplier form");
+        assert!(dq < 1e-9, "{name}: trajectories differ by {dq:e}");
+    }
+}
+
 /// The dense test oracle takes the same Newton iterates as the bordered solve.
 #[test]
 fn the_bordered_solve_equals_the_dense_oracle() {

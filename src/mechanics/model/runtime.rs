@@ -141,6 +141,14 @@ pub(crate) struct CouplingRt {
     pub row: usize,
 }
 
+impl CouplingRt {
+    /// The two joints with their weights in the row `q_b − r q_a − o`: the following joint
+    /// (1), then the leading one (`−r`).
+    pub(crate) fn weighted(&self) -> [(usize, f64); 2] {
+        [(self.b, 1.0), (self.a, -self.ratio)]
+    }
+}
+
 /// A joint as the step sees it.
 #[derive(Clone, Debug)]
 pub(crate) struct JointRt {
@@ -395,14 +403,14 @@ impl Model {
 }
 
 /// Whether the reduced iteration (`step::reduced`) covers `model`: a tree (no loop-closing
-/// joint, no coupling) solved without the dense oracle.
+/// joint; couplings between its joints are bordered, `step::reduced::couple`) solved without
+/// the dense oracle.
 pub(crate) fn covers(model: &Model) -> bool {
-    model.couplings.is_empty()
-        && model
-            .joints
-            .iter()
-            .enumerate()
-            .all(|(j, jt)| model.tree_joint[jt.child] == Some(j) && jt.dropped.is_empty())
+    model
+        .joints
+        .iter()
+        .enumerate()
+        .all(|(j, jt)| model.tree_joint[jt.child] == Some(j) && jt.dropped.is_empty())
 }
 
 /// Whether the reduced Newton matrix of `model` is the exact Jacobian: no slide pair

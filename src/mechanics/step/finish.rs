@@ -23,7 +23,7 @@
 #![allow(clippy::needless_range_loop)]
 
 use super::contact::contact_finish;
-use super::joint_loads::actuator_input;
+use super::joint_loads::{actuator_input, turn_start};
 use super::turn::{row_increment, turn_step};
 use super::work::{Held, Work};
 use crate::math::Vec3;
@@ -57,7 +57,7 @@ pub(crate) fn finish(model: &Model, ws: &mut Work, held: &Held, h: f64) -> f64 {
         let (a, bb) = (jt.parent, jt.child);
         let node = |x: &[f64], b: Option<usize>| b.map_or(zero, |b| body_nodes(x, b));
         let th_rel =
-            || read3(&ws.theta, 3 * bb) - a.map_or(Vec3::zeros(), |a| read3(&ws.theta, 3 * a));
+            read3(&ws.theta, 3 * bb) - a.map_or(Vec3::zeros(), |a| read3(&ws.theta, 3 * a));
         let c_d = held.damping[j];
         let k_s = held.stiffness[j];
         // what this joint's dampers give back (≤ 0 in a forward stage)
@@ -96,7 +96,7 @@ pub(crate) fn finish(model: &Model, ws: &mut Work, held: &Held, h: f64) -> f64 {
                 DofRt::Turn(tr) => {
                     if act != 0.0 {
                         let nbar = tr.axis.eval(&node(&ws.qbar, a), &node(&ws.qbar, Some(bb)));
-                        work += act * nbar.dot(&th_rel());
+                        work += act * nbar.dot(&th_rel);
                     }
                     let t0 = ws.ang[turn];
                     if k_s != 0.0
@@ -106,12 +106,18 @@ pub(crate) fn finish(model: &Model, ws: &mut Work, held: &Held, h: f64) -> f64 {
                         || fric.is_some()
                         || !jt.acts.is_empty()
                     {
-                        let (qa_n, qb_n) = (node(&ws.qn, a), node(&ws.qn, Some(bb)));
                         let (qa_bar, qb_bar) = (node(&ws.qbar, a), node(&ws.qbar, Some(bb)));
                         let (dqa, dqb) = (node(&ws.dq, a), node(&ws.dq, Some(bb)));
-                        let (s0, c0) = (tr.sin.eval(&qa_n, &qb_n), tr.cos.eval(&qa_n, &qb_n));
-                        let ds = row_increment(&tr.sin, &qa_bar, &qb_bar, &dqa, &dqb);
-                        let dc = row_increment(&tr.cos, &qa_bar, &qb_bar, &dqa, &dqb);
+                        let [s0, c0] = turn_start(ws, tr, turn, a, bb);
+                        // the increments as the residual took them (`joint_loads`, or the
+                        // reduced iteration's `joint_space`: the same sums)
+                        let [ds, dc] = match ws.red.split.get(j).copied().flatten() {
+                            Some(sp) => sp.increments((&qa_bar, &qb_bar), (&dqa, &dqb)),
+                            None => [
+                                row_increment(&tr.sin, &qa_bar, &qb_bar, &dqa, &dqb),
+                                row_increment(&tr.cos, &qa_bar, &qb_bar, &dqa, &dqb),
+                            ],
+                        };
                         let stops = jt.stops.as_ref();
                         let rotor = arm.map_or([0.0; 2], |i| [jt.armature, ws.arm[i]]);
                         let fr0 = fric.map(|(fr, i)| (fr, ws.fric[i]));
@@ -143,7 +149,7 @@ pub(crate) fn finish(model: &Model, ws: &mut Work, held: &Held, h: f64) -> f64 {
             }
         }
         if let Some(axes) = &jt.sph_axes {
-            let rel = th_rel();
+            let rel = th_rel;
             gained -= c_d * rel.norm_squared() / h;
             for (k, ax) in axes.iter().enumerate() {
                 let act = jt.input.map_or(0.0, |i| held.inputs[i + k]);

@@ -120,6 +120,26 @@ impl Acc {
     }
 }
 
+/// `[s₀, c₀]` of turn coordinate `turn` (rows `tr` of the pair `a`, `b`) at the stage start
+/// `ws.qn`: evaluated once per stage and kept (`Work::sc0`), as every Newton evaluation of
+/// the stage reads them.
+pub(crate) fn turn_start(
+    ws: &mut Work,
+    tr: &TurnRt,
+    turn: usize,
+    a: Option<usize>,
+    b: usize,
+) -> [f64; 2] {
+    if ws.sc0_at[turn] != ws.stage_id {
+        let zero: Nodes = [Vec3::zeros(); 4];
+        let qa_n = a.map_or(zero, |a| body_nodes(&ws.qn, a));
+        let qb_n = body_nodes(&ws.qn, b);
+        ws.sc0[turn] = [tr.sin.eval(&qa_n, &qb_n), tr.cos.eval(&qa_n, &qb_n)];
+        ws.sc0_at[turn] = ws.stage_id;
+    }
+    ws.sc0[turn]
+}
+
 /// Whether joint `j` carries any load (an actuator, a spring or a damper); most joints of a
 /// chain do not, and their load pass is skipped.
 pub(crate) fn loaded(model: &Model, held: &Held, j: usize) -> bool {
@@ -261,9 +281,7 @@ pub(crate) fn joint_loads(
                 if loaded {
                     let dqa = a.map_or(zero, |a| body_nodes(&ws.dq, a));
                     let dqb = body_nodes(&ws.dq, bb);
-                    let qa_n = a.map_or(zero, |a| body_nodes(&ws.qn, a));
-                    let qb_n = body_nodes(&ws.qn, bb);
-                    let (s0, c0) = (tr.sin.eval(&qa_n, &qb_n), tr.cos.eval(&qa_n, &qb_n));
+                    let [s0, c0] = turn_start(ws, tr, turn, a, bb);
                     let ds = row_increment(&tr.sin, qa_bar, qb_bar, &dqa, &dqb);
                     let dc = row_increment(&tr.cos, qa_bar, qb_bar, &dqa, &dqb);
                     let stops = jt.stops.as_ref();
@@ -368,10 +386,25 @@ pub(crate) fn add_sparse_row(
     sr.expand(grad)
 }
 
+/// The projected gradients of a turn coordinate's `s` and `c` that [`turn_jac`] forms, child
+/// then parent (6-vectors on the body twists; the parent's zero for the world): rows
+/// `∇s(q)Q`, `∇c(q)Q` at the iterate and columns `P̄ᵀ∇s(q̄)`, `P̄ᵀ∇c(q̄)` at the midpoint.
+pub(crate) struct TurnRows {
+    /// `[∇s(q)Q]` child, parent.
+    pub rs: [[f64; 6]; 2],
+    /// `[∇c(q)Q]` child, parent.
+    pub rc: [[f64; 6]; 2],
+    /// `[P̄ᵀ∇s(q̄)]` child, parent.
+    pub cs: [[f64; 6]; 2],
+    /// `[P̄ᵀ∇c(q̄)]` child, parent.
+    pub cc: [[f64; 6]; 2],
+}
+
 /// The Jacobian blocks of a turn load `scale (f_s ∇s(q̄) + f_c ∇c(q̄))` through the load's
 /// coefficients: `Σᵢⱼ scale ∂fᵢ/∂j₁ P̄ᵀ∇i(q̄) ⊗ ∇j(q)Q` with `dfs = [∂f_s/∂s₁, ∂f_s/∂c₁,
 /// ∂f_c/∂s₁, ∂f_c/∂c₁]` and the midpoint gradients `gs`, `gc` over the eight nodes (the
-/// Hessian of `s`, `c` at fixed coefficients is [`add_dot_row`]'s).
+/// Hessian of `s`, `c` at fixed coefficients is [`add_dot_row`]'s); returns the projected
+/// gradients it formed.
 pub(crate) fn turn_jac(
     tr: &TurnRt,
     p: &Pair,
@@ -384,7 +417,7 @@ pub(crate) fn turn_jac(
         &mut [f64; 36],
         &mut [f64; 36],
     ),
-) {
+) -> TurnRows {
     let mut g1 = [Vec3::zeros(); 8];
     tr.sin.gradient(&p.qa, &p.qb, &mut g1);
     let (rs_b, rs_a) = (row_q(&g1[4..], &p.d_b), row_q(&g1[..4], &p.d_a));
@@ -398,15 +431,22 @@ pub(crate) fn turn_jac(
     let (cs_b, cc_b) = (project(&gs[4..], &p.dbar_b), project(&gc[4..], &p.dbar_b));
     outer(x_bb, 1.0, &cs_b, &ms_b);
     outer(x_bb, 1.0, &cc_b, &mc_b);
+    let (mut cs_a, mut cc_a) = ([0.0; 6], [0.0; 6]);
     if p.a.is_some() {
         let (ms_a, mc_a) = (mix(j[0], j[1], &rs_a, &rc_a), mix(j[2], j[3], &rs_a, &rc_a));
-        let (cs_a, cc_a) = (project(&gs[..4], &p.dbar_a), project(&gc[..4], &p.dbar_a));
+        (cs_a, cc_a) = (project(&gs[..4], &p.dbar_a), project(&gc[..4], &p.dbar_a));
         outer(x_ba, 1.0, &cs_b, &ms_a);
         outer(x_ba, 1.0, &cc_b, &mc_a);
         outer(x_ab, 1.0, &cs_a, &ms_b);
         outer(x_ab, 1.0, &cc_a, &mc_b);
         outer(x_aa, 1.0, &cs_a, &ms_a);
         outer(x_aa, 1.0, &cc_a, &mc_a);
+    }
+    TurnRows {
+        rs: [rs_b, rs_a],
+        rc: [rc_b, rc_a],
+        cs: [cs_b, cs_a],
+        cc: [cc_b, cc_a],
     }
 }
 

@@ -303,6 +303,7 @@ fn stage(
     reduced: bool,
 ) -> Result<StepStats, StepError> {
     let nb = model.bodies.len();
+    ws.stage_id += 1;
     stage_rates(ws, h);
     let tol = model.settings().tolerance;
     let chord_accept = (CHORD_ACCEPT * tol).max(FLOOR_SHARE * f64::EPSILON * nb as f64);

@@ -113,6 +113,8 @@ impl Tangent {
         }
         sw.ang.copy_from_slice(&ws.ang1);
         sw.ang1.copy_from_slice(&ws.ang);
+        // a new stage start: the turn rows' start values are read anew (`Work::sc0`)
+        sw.stage_id += 1;
         // the rotors start at −ω₁, so that their load −(2a/h²)(Δt − hω₀) keeps its value
         for (w, w1) in sw.arm.iter_mut().zip(&ws.arm1) {
             *w = -w1;

@@ -146,6 +146,13 @@ pub(crate) struct Work {
     pub mu: Vec<f64>,
     /// Unwrapped turn angles at the iterate.
     pub ang1: Vec<f64>,
+    /// `[s₀, c₀]` of each turn coordinate at the stage start (`turn`), valid where
+    /// `sc0_at` equals `stage_id` (`joint_loads::turn_start`).
+    pub sc0: Vec<[f64; 2]>,
+    /// See `sc0`.
+    pub sc0_at: Vec<u64>,
+    /// Count of stage starts (`qₙ` set or settled), from 1.
+    pub stage_id: u64,
     /// Discrete rotation increments `θ_b = ½ Σ d̄ⁱ × (dᵢ − dᵢₙ)` (3 per body).
     pub theta: Vec<f64>,
     /// Scaled joint torques on the projected moment rows (3 per body).
@@ -232,6 +239,9 @@ impl Work {
             rn: vec![0.0; 12 * nb],
             mu: vec![0.0; nr],
             ang1: model.angles0.clone(),
+            sc0: vec![[0.0; 2]; model.angles0.len()],
+            sc0_at: vec![0; model.angles0.len()],
+            stage_id: 1,
             theta: vec![0.0; 3 * nb],
             mom: vec![0.0; 3 * nb],
             cbody: vec![[0.0; 16]; nb],

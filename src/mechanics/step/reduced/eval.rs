@@ -14,9 +14,12 @@
 
 use super::super::body_terms::body_rows;
 use super::super::contact::contact_forces;
+use super::super::coupling::reaction;
 use super::super::joint_loads::{joint_loads, loaded, Acc, Pair};
 use super::super::newton::{apply_joint, inertia_and_forces};
 use super::super::work::{Held, Work};
+use super::bordered::Couplings;
+use super::joint_space::joint_row;
 use super::maps::{joint_map, Map};
 use super::work::RedWork;
 use crate::math::Vec3;
@@ -65,18 +68,38 @@ pub(crate) fn evaluate(
         contact_forces(model, ws, h, jac);
     }
     let mut acc = Acc::new();
+    for (slot, cp) in rw.cpl.slots.iter_mut().zip(&model.couplings) {
+        slot.g = -cp.offset;
+    }
     for (j, jt) in model.joints.iter().enumerate() {
         let c = jt.child;
         if jac {
             // `kcp`, `kpc` are read only where `coupled`
             rw.coupled[c] = false;
         }
-        if !loaded(model, held, j) {
+        let load = loaded(model, held, j);
+        let coupled = rw.cpl.on_joint.get(j).is_some_and(|v| !v.is_empty());
+        rw.jon[c] = false;
+        if !load && !coupled {
+            continue;
+        }
+        if let Some(sp) = rw.split[j] {
+            let Couplings {
+                on_joint, slots, ..
+            } = &mut rw.cpl;
+            let cps = on_joint.get(j).map_or(&[][..], |v| &v[..]);
+            rw.jrow[c] = joint_row(model, ws, held, (j, &sp), h, jac, load, cps, slots);
+            rw.jon[c] = true;
             continue;
         }
         let p = Pair::new(ws, jt.parent, c);
         acc.clear(jac);
-        joint_loads(model, ws, held, j, h, jac, &p, &mut acc);
+        if load {
+            joint_loads(model, ws, held, j, h, jac, &p, &mut acc);
+        }
+        if coupled {
+            reactions(model, ws, rw, j, jac, &p, &mut acc);
+        }
         if apply_joint(ws, &p, &mut acc, jac) {
             rw.kpc[c] = to66(&acc.x_ab);
             rw.kcp[c] = to66(&acc.x_ba);
@@ -94,14 +117,27 @@ pub(crate) fn evaluate(
         let (pm, qm) = maps(model, ws, b, jac);
         let mut r = [0.0; 6];
         pm.st_mul(&rw.w[b], &mut r);
+        if rw.jon[b] {
+            r[0] += rw.jrow[b].r;
+        }
         if let Some(qm) = qm {
             rw.q[b] = qm;
             geometric_stiffness(model, rw, b, &pm, &qm);
+            if rw.jon[b] {
+                let jr = &rw.jrow[b];
+                for i in 0..3 {
+                    rw.xc[b][0][3 + i] += jr.xc[i];
+                    rw.xp[b][0][3 + i] += jr.xp[i];
+                }
+            }
         }
         let br = &model.bodies[b];
-        for k in 0..pm.f() {
-            let s = if k < pm.fr { br.ms } else { br.fs };
-            res = res.max((r[k] * s).abs());
+        // a coupled joint's residual is judged after its multipliers' update (`couple`)
+        if !rw.cpl.coupled.get(b).copied().unwrap_or(false) {
+            for k in 0..pm.f() {
+                let s = if k < pm.fr { br.ms } else { br.fs };
+                res = res.max((r[k] * s).abs());
+            }
         }
         rw.res[b] = r;
         rw.p[b] = pm;
@@ -112,7 +148,35 @@ pub(crate) fn evaluate(
             }
         }
     }
+    // the couplings' values are corrected within the solve, as the joints' defects are
     res
+}
+
+/// The reactions of the couplings on joint `j` into `acc`, their row values into `rw.cpl.g`
+/// and (`jac`) their columns and rows (`couple`).
+fn reactions(
+    model: &Model,
+    ws: &mut Work,
+    rw: &mut RedWork,
+    j: usize,
+    jac: bool,
+    p: &Pair,
+    acc: &mut Acc,
+) {
+    let cpl = &mut rw.cpl;
+    for &(c, w) in &cpl.on_joint[j] {
+        let mu = ws.mu[model.couplings[c].row];
+        let r = reaction(model, ws, (j, w, mu), p, jac, acc);
+        let slot = &mut cpl.slots[c];
+        slot.g += r.g;
+        if jac {
+            // the following joint's entries first (`coupling::weighted`)
+            let k = usize::from(model.couplings[c].b != j);
+            slot.col[k] = (p.b, r.col[0], true);
+            slot.row[2 * k] = (p.b, r.row[0]);
+            slot.row[2 * k + 1] = (p.a.unwrap_or(usize::MAX), r.row[1]);
+        }
+    }
 }
 
 /// `s ((f·v) I − v fᵀ)`: the derivative of `f × (δθ × v)` with respect to `δθ`, times `s`.

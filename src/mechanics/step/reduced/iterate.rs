@@ -20,6 +20,7 @@
 //!   iteration budget, returns `NoConvergence`: the stage is redone by the multiplier form.
 
 use super::super::work::{Held, Work, FACTOR_EFFORT};
+use super::couple;
 use super::eval::evaluate;
 use super::place::{defects, prepare, size, update};
 use super::tree::{factor, solve};
@@ -145,7 +146,7 @@ fn run(
     let tol = model.settings().tolerance;
     loop {
         it += 1;
-        let res = evaluate(model, ws, rw, held, h, fresh);
+        let mut res = evaluate(model, ws, rw, held, h, fresh);
         if !res.is_finite() {
             return Err(StepError::NonFinite("state"));
         }
@@ -153,13 +154,16 @@ fn run(
         if fresh {
             factorizations += 1;
             since_factor = 0;
-            if !factor(model, rw) {
+            if !factor(model, rw) || !couple::factor(model, rw) {
                 return Err(StepError::Singular);
             }
         }
         since_factor += 1;
         defects(model, rw);
+        couple::keep(rw);
         solve(model, rw);
+        couple::correct(model, ws, rw);
+        res = res.max(couple::residual(model, rw));
         let upd = size(model, rw);
         if !upd.is_finite() {
             return Err(StepError::NonFinite("state"));

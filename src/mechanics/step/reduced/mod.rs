@@ -27,18 +27,24 @@
 //! for turning pairs and approximate for slides (`eval`). The matrix is eliminated leaves to
 //! root like an articulated-body recursion with fixed-size blocks (`tree`), O(N). A stage that
 //! does not converge is redone by the multiplier form (`iterate`). Loop-closing joints are not
-//! covered: such models use the multiplier form throughout.
+//! covered: such models use the multiplier form throughout. Joint couplings are bordered on the
+//! tree factors (`couple`), and a revolute joint's loads enter as scalars on its own rate
+//! (`joint_space`).
 //!
 //! Measured on the chainN models at h = 1e-3 over 10 s (10 000 steps), iterations per step and
 //! energy balance (relative), against the multiplier form's: N = 200: 2.08 (2.54), 1e-15;
 //! N = 300: 2.21 (2.74), 1e-15; N = 500: 2.83 (3.12), 4e-15; N = 1000: 4.38 (3.83), 1.7e-14,
 //! 6 stages handed back, 5.7 against 9–10.5 ms per step.
 
+mod bordered;
+mod couple;
 mod eval;
 pub(crate) mod iterate;
+mod joint_space;
 mod maps;
 pub(crate) mod place;
 mod settle;
+pub(crate) mod split;
 mod tree;
 pub(crate) mod work;
 

@@ -76,6 +76,7 @@ fn increment(ws: &Work, b: usize) -> Mat3 {
 pub(crate) fn prepare(model: &Model, rw: &mut RedWork, ws: &mut Work) {
     if ws.memory.settle == 0 {
         settle(model, ws);
+        ws.stage_id += 1;
         ws.memory.settle = SETTLE_EVERY;
     }
     ws.memory.settle -= 1;

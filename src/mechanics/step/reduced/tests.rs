@@ -117,8 +117,22 @@ fn maps_annihilate_the_joint_rows_and_placement_keeps_them() {
 
 /// The Newton matrix of the reduced residual against central differences: `J_fd (J⁻¹ eᵢ) = eᵢ`.
 fn assert_reduced_jacobian(def: &ModelDef, stiffness: &[f64], damping: &[f64], bound: f64) {
+    assert_reduced_jacobian_with(def, stiffness, damping, bound, 0.0);
+}
+
+/// [`assert_reduced_jacobian`] with every coupling's scaled multiplier at `mu` (held).
+fn assert_reduced_jacobian_with(
+    def: &ModelDef,
+    stiffness: &[f64],
+    damping: &[f64],
+    bound: f64,
+    mu: f64,
+) {
     let h = 0.05;
     let (model, mut ws, mut rw) = staged(def, h, 0.01);
+    for c in &model.couplings {
+        ws.mu[c.row] = mu;
+    }
     let inputs: Vec<f64> = (0..model.inputs().len())
         .map(|k| 0.3 + 0.7 * (k as f64).sin())
         .collect();
@@ -205,6 +219,33 @@ fn reduced_jacobian_matches_finite_differences() {
 #[test]
 fn reduced_jacobian_matches_finite_differences_with_springs_and_dampers() {
     assert_reduced_jacobian(&turning(), &[270.0, 150.0, 0.0], &[38.0, 20.0, 12.0], 1e-6);
+}
+
+/// Two revolute joints with rotors, springs, dampers and input torques, the second coupled to
+/// the first at a non-zero multiplier: their loads and the coupling's reaction enter in joint
+/// space (`joint_space`), with exact Newton rows.
+#[test]
+fn reduced_jacobian_with_rotors_and_a_coupling_matches_finite_differences() {
+    let mut def = turning();
+    def.joints[1].kind = crate::mechanics::model::def::JointType::Revolute;
+    def.joints[1].initial = crate::mechanics::model::def::JointInitial::Coords {
+        q: vec![0.3],
+        qd: vec![-0.4],
+    };
+    for j in &mut def.joints[..2] {
+        j.armature = 0.05;
+    }
+    def.couplings
+        .push(crate::mechanics::model::def::CouplingDef {
+            a: 0,
+            b: 1,
+            ratio: 0.7,
+            offset: 0.02,
+        });
+    let model = Model::new(&def, SolverSettings::default()).expect("model");
+    let rw = RedWork::new(&model);
+    assert!(rw.split[0].is_some() && rw.split[1].is_some() && rw.split[2].is_none());
+    assert_reduced_jacobian_with(&def, &[270.0, 150.0, 0.0], &[38.0, 20.0, 12.0], 1e-6, 0.3);
 }
 
 /// With a prismatic joint the slide terms of the geometric stiffness are approximate (their

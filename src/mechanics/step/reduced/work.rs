@@ -4,7 +4,9 @@
 use crate::math::{Mat3, Vec3};
 use crate::mechanics::model::runtime::{covers, Model};
 
+use super::bordered::Couplings;
 use super::maps::{Map, V6};
+use super::split::{split, JointRow, Split};
 
 /// The configuration of a joint at the stage start that the reparametrization carries.
 #[derive(Clone, Copy, Debug)]
@@ -84,6 +86,14 @@ pub(crate) struct RedWork {
     pub dx: Vec<V6>,
     /// The joints' defects at the iterate as body twists (`place::defects`).
     pub c: Vec<V6>,
+    /// The couplings' bordered solve (`couple`).
+    pub cpl: Couplings,
+    /// Per joint: its split if its loads are taken in joint space (`joint_space`).
+    pub split: Vec<Option<Split>>,
+    /// Per body: what its joint added in joint space in the last evaluation (where `jon`).
+    pub jrow: Vec<JointRow>,
+    /// See `jrow`.
+    pub jon: Vec<bool>,
 }
 
 impl RedWork {
@@ -129,6 +139,10 @@ impl RedWork {
             yv: vec![[0.0; 6]; nb],
             dx: vec![[0.0; 6]; nb],
             c: vec![[0.0; 6]; nb],
+            cpl: Couplings::new(model),
+            split: (0..model.joints.len()).map(|j| split(model, j)).collect(),
+            jrow: vec![JointRow::default(); nb],
+            jon: vec![false; nb],
         }
     }
 }
