@@ -228,11 +228,9 @@ impl TreeDynamics {
     /// articulated-body solve per column; the outputs `ys` by one dual pass per column).
     fn linearize_by_partials(&self, p: Partials, q: &[f64], nu: &[f64], ys: &[Quantity]) -> Linear {
         let (n, m, pn) = (self.n(), self.n_inputs(), ys.len());
-        let mut x = DMatrix::zeros(n, 2 * n + m);
-        x.columns_mut(0, n).copy_from(&(-&p.dq));
-        x.columns_mut(n, n).copy_from(&(-&p.dv));
-        x.columns_mut(2 * n, m).copy_from(&(-&p.du));
-        p.mass.solve_columns(&mut x);
+        let mut x = p.jac;
+        x.neg_mut();
+        p.mass.solve_columns(&mut x.as_view_mut());
         let mut a = DMatrix::zeros(2 * n, 2 * n);
         a.view_mut((0, n), (n, n)).fill_with_identity();
         a.view_mut((n, 0), (n, 2 * n))

@@ -99,13 +99,22 @@ pub(crate) fn shift_f(f: &V6, d: &Vec3) -> V6 {
     join(&(n - d.cross(&fl)), &fl)
 }
 
-/// The map `y` from motions to forces about `a` (an inertia) as about `a + d`: `F y Fᵀ`.
+/// The map `y` from motions to forces about `a` (an inertia) as about `a + d`: `F y Fᵀ`, by
+/// blocks (`y = [A B; C D]`: `[A − d̂C + (B − d̂D) d̂, B − d̂D; C + D d̂, D]`).
 #[must_use]
 pub(crate) fn shift_map(y: &M6, d: &Vec3) -> M6 {
     if *d == Vec3::zeros() {
         return *y;
     }
-    let mut f = M6::identity();
-    f.fixed_view_mut::<3, 3>(0, 3).copy_from(&(-skew(d)));
-    f * y * f.transpose()
+    let h = skew(d);
+    let blk = |i: usize, j: usize| -> Mat3 { y.fixed_view::<3, 3>(i, j).into_owned() };
+    let (a, b, c, dd) = (blk(0, 0), blk(0, 3), blk(3, 0), blk(3, 3));
+    let b2 = b - h * dd;
+    let mut out = M6::zeros();
+    out.fixed_view_mut::<3, 3>(0, 0)
+        .copy_from(&(a - h * c + b2 * h));
+    out.fixed_view_mut::<3, 3>(0, 3).copy_from(&b2);
+    out.fixed_view_mut::<3, 3>(3, 0).copy_from(&(c + dd * h));
+    out.fixed_view_mut::<3, 3>(3, 3).copy_from(&dd);
+    out
 }

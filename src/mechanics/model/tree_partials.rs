@@ -55,12 +55,8 @@ use num_dual::Dual64;
 pub(crate) struct Partials {
     /// `ν̇₀` (n), rad/s² or m/s².
     pub nud0: Vec<f64>,
-    /// `∂res/∂q`, n × n.
-    pub dq: DMatrix<f64>,
-    /// `∂res/∂ν`, n × n.
-    pub dv: DMatrix<f64>,
-    /// `∂res/∂u`, n × m.
-    pub du: DMatrix<f64>,
+    /// `[∂res/∂q  ∂res/∂ν  ∂res/∂u]`, n × (2n + m).
+    pub jac: DMatrix<f64>,
     /// The mass matrix's articulated-body factors.
     pub mass: Articulated,
 }
@@ -205,14 +201,7 @@ impl TreeDynamics {
                 offset[k] = r.point[r.body[k]] - r.point[r.body[p]];
             }
         }
-        let mass = Articulated::new(
-            r.s.clone(),
-            r.prev.clone(),
-            offset,
-            r.order.clone(),
-            own,
-            &armature,
-        )?;
+        let mass = Articulated::new(&r.s, &r.prev, &offset, r.order.clone(), own, &armature)?;
         let wext: Vec<V6> = (0..nb)
             .map(|b| join(&(ne[b] + cg[b].cross(&fe[b])), &fe[b]))
             .collect();
@@ -240,7 +229,7 @@ impl TreeDynamics {
             let b = r.body[k];
             -(r.s[k].dot(&(f0[b] - wc[b])) - gen(k))
         });
-        mass.solve_columns(&mut nud0);
+        mass.solve_columns(&mut nud0.as_view_mut());
         let nud0: Vec<f64> = nud0.iter().copied().collect();
         let [vb, ab, vm, am] = self.sweep(&r, nu, &nud0);
         let fc = inertial(&vb, &ab);
@@ -268,7 +257,7 @@ impl TreeDynamics {
         let pp: Vec<V6> = (0..n)
             .map(|k| cross_m(&am[k], &r.s[k]) + cross_m(&vm[k], &ww[k]))
             .collect();
-        let (mut dq, mut dv) = (DMatrix::zeros(n, n), DMatrix::zeros(n, n));
+        let mut jac = DMatrix::zeros(n, 2 * n + m);
         for j in 0..n {
             let (b, sj, w, p) = (r.body[j], r.s[j], ww[j], pp[j]);
             let (wj, vj) = split(&sj);
@@ -278,8 +267,8 @@ impl TreeDynamics {
             let mut i = Some(j);
             while let Some(k) = i {
                 let d = r.point[r.body[k]] - r.point[b];
-                dq[(k, j)] = r.s[k].dot(&shift_f(&col_q, &d));
-                dv[(k, j)] = r.s[k].dot(&shift_f(&col_v, &d));
+                jac[(k, j)] = r.s[k].dot(&shift_f(&col_q, &d));
+                jac[(k, n + j)] = r.s[k].dot(&shift_f(&col_v, &d));
                 i = r.prev[k];
             }
         }
@@ -297,64 +286,51 @@ impl TreeDynamics {
                     shift_m(&ww[k], &d),
                     shift_m(&pp[k], &d),
                 );
-                dq[(i, k)] = ui.dot(&p) + zi.dot(&w) + xi.dot(&sk);
-                dv[(i, k)] = 2.0 * ui.dot(&w) + zi.dot(&sk);
+                jac[(i, k)] = ui.dot(&p) + zi.dot(&w) + xi.dot(&sk);
+                jac[(i, n + k)] = 2.0 * ui.dot(&w) + zi.dot(&sk);
                 j = r.prev[k];
             }
         }
-        let mut du = DMatrix::zeros(n, m);
-        let at_u = |(b, i): (usize, usize), w: &dyn Fn(usize) -> V6, du: &mut DMatrix<f64>| {
+        let at_u = |(b, i): (usize, usize), w: &dyn Fn(usize) -> V6, jac: &mut DMatrix<f64>| {
             for c in 0..3 {
                 let w = w(c);
                 let mut k = r.last[b];
                 while let Some(kk) = k {
                     let d = r.point[r.body[kk]] - r.point[b];
-                    du[(kk, i + c)] -= r.s[kk].dot(&shift_f(&w, &d));
+                    jac[(kk, 2 * n + i + c)] -= r.s[kk].dot(&shift_f(&w, &d));
                     k = r.prev[kk];
                 }
             }
         };
         for &t in &self.torques {
-            at_u(t, &|c| join(&Vec3::ith(c, 1.0), &Vec3::zeros()), &mut du);
+            at_u(t, &|c| join(&Vec3::ith(c, 1.0), &Vec3::zeros()), &mut jac);
         }
         for &(b, i) in &self.forces {
             let e = |c: usize| join(&cg[b].cross(&Vec3::ith(c, 1.0)), &Vec3::ith(c, 1.0));
-            at_u((b, i), &e, &mut du);
+            at_u((b, i), &e, &mut jac);
         }
-        self.load_partials(q, nu, u, &mut dq, &mut dv, &mut du);
-        Some(Partials {
-            nud0,
-            dq,
-            dv,
-            du,
-            mass,
-        })
+        self.load_partials(q, nu, u, &mut jac);
+        Some(Partials { nud0, jac, mass })
     }
     /// Subtracts the per-coordinate loads' derivatives (`coord_load`, by dual numbers on
-    /// each coordinate's own `q_k`, `ν_k` and the inputs it reads) from `dq`, `dv`, `du`.
-    fn load_partials(
-        &self,
-        q: &[f64],
-        nu: &[f64],
-        u: &[f64],
-        dq: &mut DMatrix<f64>,
-        dv: &mut DMatrix<f64>,
-        du: &mut DMatrix<f64>,
-    ) {
+    /// each coordinate's own `q_k`, `ν_k` and the inputs it reads) from
+    /// `jac = [∂res/∂q  ∂res/∂ν  ∂res/∂u]`.
+    fn load_partials(&self, q: &[f64], nu: &[f64], u: &[f64], jac: &mut DMatrix<f64>) {
+        let n = self.coords.len();
         let mut ud: Vec<Dual64> = u.iter().map(|&x| Dual64::from(x)).collect();
         for jd in self.joints.iter().flatten() {
             for kk in 0..jd.kind.dof() {
                 let k = jd.at + kk;
                 let (qk, vk) = (Dual64::from(q[k]), Dual64::from(nu[k]));
-                dq[(k, k)] -= self.coord_load(jd, kk, qk.derivative(), vk, &ud).eps;
-                dv[(k, k)] -= self.coord_load(jd, kk, qk, vk.derivative(), &ud).eps;
+                jac[(k, k)] -= self.coord_load(jd, kk, qk.derivative(), vk, &ud).eps;
+                jac[(k, n + k)] -= self.coord_load(jd, kk, qk, vk.derivative(), &ud).eps;
                 let mut reads: Vec<usize> = jd.input.map(|i| i + kk).into_iter().collect();
                 reads.extend(jd.acts.list.iter().map(|a| a.input));
                 reads.sort_unstable();
                 reads.dedup();
                 for l in reads {
                     ud[l] = ud[l].derivative();
-                    du[(k, l)] -= self.coord_load(jd, kk, qk, vk, &ud).eps;
+                    jac[(k, 2 * n + l)] -= self.coord_load(jd, kk, qk, vk, &ud).eps;
                     ud[l] = Dual64::from(u[l]);
                 }
             }
