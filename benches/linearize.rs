@@ -1,7 +1,8 @@
 //! Criterion benches of the exact continuous-time linear model (`Operating::linearize`, A and B
 //! without outputs) at the initial state: the robot arm (6 joints, UR5-like) and chainN
 //! (N = 10, 100, 1000: 2N states, N inputs are none, so B is empty; the cost is that of A).
-//! Expected growth: 2N dual passes of O(N) and one O(N³) LU: O(N²) + O(N³).
+//! Expected growth (analytic path, `tree_partials`): one O(N·depth) sweep for the residual's
+//! partial derivatives and one O(N) articulated-body solve per column: O(N²) on a chain.
 //!
 //! `step_map/*`: the exact discrete-time Ad, Bd of one communication step of 1 ms (one sub-step
 //! at the default max_step, `Simulation::step_map`): per stage three Newton-matrix assemblies,

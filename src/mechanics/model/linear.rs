@@ -1,5 +1,6 @@
 //! Exact linear models of the continuous-time dynamics in minimal coordinates
-//! (`tree_dynamics`), by forward-mode dual numbers: one pass per state or input direction.
+//! (`tree_dynamics`): by the residual's analytic partial derivatives where they cover the model
+//! (`tree_partials`), else by forward-mode dual numbers, one pass per state or input direction.
 //!
 //! ```text
 //! ẋ = f(x, u),  x = (q, ν):   q̇ = N(q) ν,   M(q) ν̇ = −res(q, ν, 0, u)
@@ -12,10 +13,14 @@
 //! Touching contacts and joint friction add their sticking bristles `σ` to the state
 //! (`sticking`): `x = (q, ν, σ)`, `σ̇` their rates, the residual affine in `σ`.
 //!
-//! Cost: `2n + m` passes of O(bodies) each, one LU of the `n × n` mass matrix and one solve per
-//! direction: O(n·N + n³).
+//! Cost, analytic (trees of revolute, prismatic, cylindrical, universal, planar and fixed
+//! joints, no bristles): one O(n·depth) sweep for `∂res/∂(q, ν, u)` and one O(n)
+//! articulated-body solve per column, O(n·(n·depth + m)) (chains: O(n²)); duals: `2n + m`
+//! passes of O(bodies) each, one LU of the `n × n` mass matrix and one solve per direction:
+//! O(n·N + n³). Outputs add one dual pass per column either way.
 
 use super::sticking::lift_sigma;
+use super::tree_dynamics::tree_partials::Partials;
 use super::tree_dynamics::{c, TreeDynamics};
 use crate::math::Mat3;
 use nalgebra::{DMatrix, DVector, Matrix3, Vector3};
@@ -192,11 +197,87 @@ impl TreeDynamics {
     }
 
     /// The exact linear model at `(q, ν, u)` with outputs `ys` (module formulas); the state
-    /// `x = (q, ν, σ)` with the sticking bristles `σ` (`sticking`) last.
+    /// `x = (q, ν, σ)` with the sticking bristles `σ` (`sticking`) last. By the analytic
+    /// partial derivatives (`tree_partials`) where they cover the model, else
+    /// [`TreeDynamics::linearize_by_duals`].
     ///
     /// # Errors
     /// A message when the joint-space mass matrix is singular.
     pub fn linearize(
+        &self,
+        q: &[f64],
+        nu: &[f64],
+        u: &[f64],
+        ys: &[Quantity],
+    ) -> Result<Linear, String> {
+        match self.partials(q, nu, u) {
+            Some(p) => Ok(self.linearize_by_partials(p, q, nu, ys)),
+            None => self.linearize_by_duals(q, nu, u, ys),
+        }
+    }
+
+    /// Whether [`TreeDynamics::linearize`] takes the analytic partial derivatives
+    /// (`tree_partials`: trees without spherical joints, free bodies, touching contacts or
+    /// joint friction) rather than the dual-number passes.
+    #[must_use]
+    pub fn has_analytic_linearization(&self) -> bool {
+        self.has_partials()
+    }
+
+    /// The linear model from the residual's partial derivatives `p` (module formulas: one
+    /// articulated-body solve per column; the outputs `ys` by one dual pass per column).
+    fn linearize_by_partials(&self, p: Partials, q: &[f64], nu: &[f64], ys: &[Quantity]) -> Linear {
+        let (n, m, pn) = (self.n(), self.n_inputs(), ys.len());
+        let mut x = p.jac;
+        x.neg_mut();
+        p.mass.solve_columns(&mut x.as_view_mut());
+        let mut a = DMatrix::zeros(2 * n, 2 * n);
+        a.view_mut((0, n), (n, n)).fill_with_identity();
+        a.view_mut((n, 0), (n, 2 * n))
+            .copy_from(&x.columns(0, 2 * n));
+        let mut b = DMatrix::zeros(2 * n, m);
+        b.view_mut((n, 0), (n, m)).copy_from(&x.columns(2 * n, m));
+        let mut cm = DMatrix::zeros(pn, 2 * n);
+        let mut d = DMatrix::zeros(pn, m);
+        if pn > 0 {
+            for col in 0..2 * n + m {
+                let qd = lift(q, (col < n).then_some(col));
+                let vd = lift(nu, (n..2 * n).contains(&col).then(|| col - n));
+                let nud: Vec<Dual64> = (0..n)
+                    .map(|i| Dual64::new(p.nud0[i], x[(i, col)]))
+                    .collect();
+                for (k, y) in ys.iter().enumerate() {
+                    let v = self.quantity_with(&qd, &vd, &nud, &[], *y).eps;
+                    if col < 2 * n {
+                        cm[(k, col)] = v;
+                    } else {
+                        d[(k, col - 2 * n)] = v;
+                    }
+                }
+            }
+        }
+        let mut xdot0 = nu.to_vec();
+        xdot0.extend_from_slice(&p.nud0);
+        let y0 = ys
+            .iter()
+            .map(|y| self.quantity(q, nu, &p.nud0, *y))
+            .collect();
+        Linear {
+            a,
+            b,
+            c: cm,
+            d,
+            xdot0,
+            y0,
+        }
+    }
+
+    /// [`TreeDynamics::linearize`] by one forward dual-number pass per state and input
+    /// direction (module formulas): every model, and the reference of the analytic path.
+    ///
+    /// # Errors
+    /// A message when the joint-space mass matrix is singular.
+    pub fn linearize_by_duals(
         &self,
         q: &[f64],
         nu: &[f64],

@@ -19,12 +19,15 @@
 //! - the valid range of every parameter and solver setting (`ranges`), shared by the spec
 //!   check and the FMU;
 //! - the continuous-time dynamics of trees in minimal coordinates, generic over the scalar
-//!   (`tree_dynamics`), its exact linear models by dual numbers (`linear`), and the tangents
-//!   between its coordinates and the nodal ones (`minimal`);
+//!   (`tree_dynamics`), its exact linear models by analytic derivatives (`tree_dynamics`'s
+//!   `tree_partials`, in spatial vectors: `spatial`; mass-matrix solves by the articulated-body
+//!   recursion: `articulated`) or dual numbers (`linear`), and the tangents between its
+//!   coordinates and the nodal ones (`minimal`);
 //! - test models shared by several layers' unit tests (`fixtures`).
 //!
 //! Uses: `linalg` and `crate::math`; never `step` or `run`.
 
+pub(crate) mod articulated;
 pub(crate) mod assemble;
 pub mod body;
 pub mod constraint;
@@ -55,6 +58,7 @@ pub(crate) mod runtime;
 pub mod scalar;
 pub(crate) mod sink;
 pub(crate) mod sparse_row;
+pub(crate) mod spatial;
 pub mod sticking;
 pub(crate) mod sticking_at;
 pub(crate) mod stops;

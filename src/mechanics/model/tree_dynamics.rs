@@ -583,35 +583,40 @@ impl TreeDynamics {
                     continue;
                 }
                 for k in 0..jd.kind.dof() {
-                    let (qk, vk) = (q[jd.at + k], nu[jd.at + k]);
-                    let mut gen = -qk * c::<T>(jd.stiffness) - vk * c::<T>(jd.damping);
-                    if let Some(i) = jd.input {
-                        let (act, e) = (u[i + k], jd.effort);
-                        gen += if act > c::<T>(e) {
-                            c::<T>(e)
-                        } else if act < c::<T>(-e) {
-                            c::<T>(-e)
-                        } else {
-                            act
-                        };
-                    }
-                    if !jd.acts.is_empty() {
-                        gen += jd.acts.torque(&self.gains, u, qk, vk);
-                    }
-                    if let Some(st) = &jd.stops {
-                        let pu = qk - c::<T>(st.upper);
-                        let pw = c::<T>(st.lower) - qk;
-                        let pu = if pu > T::zero() { pu } else { T::zero() };
-                        let pw = if pw > T::zero() { pw } else { T::zero() };
-                        gen +=
-                            (pw - pu) * c::<T>(st.stiffness) - (pu + pw) * vk * c::<T>(st.damping);
-                    }
-                    res[jd.at + k] -= gen;
+                    res[jd.at + k] -= self.coord_load(jd, k, q[jd.at + k], nu[jd.at + k], u);
                 }
             }
             self.sticking.joint_loads(nu, sigma, &mut res);
         }
         res
+    }
+
+    /// The applied generalized force on coordinate `k` of the non-spherical joint `jd` at its
+    /// value `qk` (rad or m), rate `vk` (rad/s or m/s) and the inputs `u` (module formulas):
+    /// `act − k q − c q̇ + stop(q, q̇) + Σ τ_A(u_A, q, q̇)`, N·m or N.
+    fn coord_load<T: Real>(&self, jd: &JointData, k: usize, qk: T, vk: T, u: &[T]) -> T {
+        let mut gen = -qk * c::<T>(jd.stiffness) - vk * c::<T>(jd.damping);
+        if let Some(i) = jd.input {
+            let (act, e) = (u[i + k], jd.effort);
+            gen += if act > c::<T>(e) {
+                c::<T>(e)
+            } else if act < c::<T>(-e) {
+                c::<T>(-e)
+            } else {
+                act
+            };
+        }
+        if !jd.acts.is_empty() {
+            gen += jd.acts.torque(&self.gains, u, qk, vk);
+        }
+        if let Some(st) = &jd.stops {
+            let pu = qk - c::<T>(st.upper);
+            let pw = c::<T>(st.lower) - qk;
+            let pu = if pu > T::zero() { pu } else { T::zero() };
+            let pw = if pw > T::zero() { pw } else { T::zero() };
+            gen += (pw - pu) * c::<T>(st.stiffness) - (pu + pw) * vk * c::<T>(st.damping);
+        }
+        gen
     }
 
     /// The generalized forces `Q_k = ω_k · (N − p_k × F) + u_k · F` of body forces `f` and
@@ -874,6 +879,9 @@ impl TreeDynamics {
         Ok((acc.iter().copied().collect(), lu))
     }
 }
+
+#[path = "tree_partials.rs"]
+pub(crate) mod tree_partials;
 
 #[cfg(test)]
 #[path = "tree_dynamics_tests.rs"]
