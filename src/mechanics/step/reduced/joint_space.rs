@@ -64,26 +64,28 @@ struct Frame {
 }
 
 impl Frame {
-    /// The vectors at `q̄` (`qa_bar`, `qb_bar`) and `q`, and the rows' increments `[Δs, Δc]`
-    /// from the node increments `da`, `db` (`Δ(p·k) = Δp·k̄ + p̄·Δk`, as
-    /// `turn::row_increment` forms it, so the residual and `finish` take the same step).
+    /// The vectors at `q̄` (`qa_bar`, `qb_bar`) and, for a Jacobian pass, at `q` (else
+    /// zero), and the rows' increments `[Δs, Δc]` from the node increments `da`, `db`
+    /// (`Δ(p·k) = Δp·k̄ + p̄·Δk`, as `turn::row_increment` forms it, so the residual and
+    /// `finish` take the same step).
     fn new(
         sp: &Split,
         bar: (&Nodes, &Nodes),
-        it: (&Nodes, &Nodes),
+        it: Option<(&Nodes, &Nodes)>,
         d: (&Nodes, &Nodes),
     ) -> (Self, [f64; 2]) {
-        let ((qa_bar, qb_bar), (qa, qb), (da, db)) = (bar, it, d);
+        let ((qa_bar, qb_bar), (da, db)) = (bar, d);
+        let at = |f: &Factor| it.map_or(Vec3::zeros(), |(qa, qb)| f.at(qa, qb));
         let nb = sp.n.at(qa_bar, qb_bar);
-        let n = sp.n.at(qa, qb);
+        let n = at(&sp.n);
         let row = |pk: &([Factor; 2], bool)| {
             let f = &pk.0;
             let (pb, kb) = (f[0].at(qa_bar, qb_bar), f[1].at(qa_bar, qb_bar));
             let r = Row {
                 pb,
                 kb,
-                p: f[0].at(qa, qb),
-                k: f[1].at(qa, qb),
+                p: at(&f[0]),
+                k: at(&f[1]),
                 kappa: nb.dot(&kb.cross(&pb)),
             };
             (r, row_increment(pk, (pb, kb), (da, db)))
@@ -166,9 +168,10 @@ pub(crate) fn joint_row(
     let (a, b) = (jt.parent, jt.child);
     let at = |x: &[f64], body: Option<usize>| body.map_or(zero, |p| body_nodes(x, p));
     let bar = (at(&ws.qbar, a), at(&ws.qbar, Some(b)));
-    let it = (at(&ws.q, a), at(&ws.q, Some(b)));
+    let it = jac.then(|| (at(&ws.q, a), at(&ws.q, Some(b))));
     let d = (at(&ws.dq, a), at(&ws.dq, Some(b)));
-    let (fr, dsdc) = Frame::new(sp, (&bar.0, &bar.1), (&it.0, &it.1), (&d.0, &d.1));
+    let it = it.as_ref().map(|(qa, qb)| (qa, qb));
+    let (fr, dsdc) = Frame::new(sp, (&bar.0, &bar.1), it, (&d.0, &d.1));
     let s0c0 = turn_start(ws, tr, jt.turn0, a, b);
     let mut out = JointRow::default();
     if load {
