@@ -264,3 +264,80 @@ fn the_linear_model_uses_the_tuned_gains() {
     }
     assert!((lin.b[(1, 0)] - g * kp / i).abs() < 1e-12, "B {}", lin.b);
 }
+
+/// A joint's `actuatorfrcrange` is a pair of fixed parameters, `joint.J.actuatorfrcrange[1]`
+/// and `[2]`: set before initialisation they give the run of the spec with that range, bit for
+/// bit; either end may be set first (lo < hi is checked when the model is built, at
+/// `fmi2EnterInitializationMode`, and an inverted range is refused there); a NaN is refused
+/// at once, by name.
+#[test]
+fn the_actuator_force_range_is_a_fixed_parameter() {
+    let rotor = |range: &str| {
+        format!(
+            "name = \"Rotor\"\ngravity = [0.0, 0.0, 0.0]\n[solver]\nmax_step = 0.05\n\
+             [[body]]\nname = \"r\"\nmass = 1.0\n\
+             inertia = [0.5, 0.5, 0.5]\n[[joint]]\nname = \"spin\"\ntype = \"revolute\"\n\
+             parent = \"world\"\nchild = \"r\"\naxis = [0.0, 0.0, 1.0]\n\
+             actuatorfrcrange = {range}\n[[actuator]]\nname = \"a\"\njoint = \"spin\"\n\
+             kind = \"motor\"\ngear = 2.0\n"
+        )
+    };
+    let m = TestModel::new(&rotor("[-0.3, 0.8]"));
+    let (lo, hi) = (
+        m.vr("joint.spin.actuatorfrcrange[1]"),
+        m.vr("joint.spin.actuatorfrcrange[2]"),
+    );
+    for (name, start) in [
+        ("joint.spin.actuatorfrcrange[1]", -0.3),
+        ("joint.spin.actuatorfrcrange[2]", 0.8),
+    ] {
+        let v = m.table.vars.iter().find(|v| v.name == name).unwrap();
+        assert_eq!(v.causality, Causality::Parameter, "{name}");
+        assert_eq!(v.variability, Variability::Fixed, "{name}");
+        assert_eq!((v.unit, v.start), (Some("N.m"), Some(start)), "{name}");
+    }
+    let ctrl = m.vr("actuator.a.ctrl");
+    let q = m.vr("joint.spin.q");
+    // the new range [0.9, 1.2] set upper end first, then lower: legal in either order
+    for order in [[hi, lo], [lo, hi]] {
+        let f = Fmu::new(&m);
+        for vr in order {
+            let v = if vr == lo { 0.9 } else { 1.2 };
+            assert_eq!(f.set_real(&[vr], &[v]), fmi2OK, "{:?}", f.messages());
+        }
+        assert_eq!(f.setup(0.0), fmi2OK);
+        assert_eq!(unsafe { fmi2EnterInitializationMode(f.c) }, fmi2OK);
+        assert_eq!(unsafe { fmi2ExitInitializationMode(f.c) }, fmi2OK);
+        assert_eq!(f.get_real(&[lo, hi]).1, vec![0.9, 1.2]);
+        let (mm, mut s) = spec_model(&rotor("[0.9, 1.2]"));
+        assert_eq!(f.set_real(&[ctrl], &[0.2]), fmi2OK);
+        s.inputs_mut().copy_from_slice(&[0.2]);
+        for i in 0..20 {
+            assert_eq!(f.step(0.05 * f64::from(i), 0.05), fmi2OK);
+            step(&mm, &mut s, 0.05).unwrap();
+        }
+        // 2·0.2 = 0.4 N·m is below the range: 0.9 N·m acts
+        let got = f.get_real(&[q]).1[0];
+        assert_eq!(got, s.outputs().joints[0].q[0]);
+        // q ≈ ½ (τ / I) t² = 0.9 rad at t = 1 s (the step's error is O((hω)²): 4e-4 here),
+        // against 0.4 rad for the unclamped 0.4 N·m
+        assert!((got - 0.5 * 0.9 / 0.5).abs() < 1e-3, "{got}");
+    }
+    // a NaN is refused by name, an inverted range when the model is built
+    let f = Fmu::new(&m);
+    assert_eq!(f.set_real(&[lo], &[f64::NAN]), fmi2Error);
+    assert!(
+        f.last_message().contains("joint.spin.actuatorfrcrange[1]"),
+        "{}",
+        f.last_message()
+    );
+    assert_eq!(f.set_real(&[lo], &[1.0]), fmi2OK);
+    assert_eq!(f.setup(0.0), fmi2OK);
+    // the model is built when initialisation starts
+    assert_eq!(unsafe { fmi2EnterInitializationMode(f.c) }, fmi2Error);
+    assert!(
+        f.last_message().contains("actuator force range"),
+        "{}",
+        f.last_message()
+    );
+}

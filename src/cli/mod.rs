@@ -140,8 +140,8 @@ pub enum Command {
     /// world's plane (unless --no-contacts), connect and weld equalities as loop-closing
     /// joints, motor, position and velocity actuators on hinges and slides as [[actuator]]
     /// (the input actuator.A.ctrl, MuJoCo's laws, gear and clamps, a joint's
-    /// actuatorfrcrange; the parameters actuator.A.gear, and actuator.A.kp, actuator.A.kv
-    /// tunable between steps). Joint coordinates are
+    /// actuatorfrcrange; the parameters actuator.A.gear, joint.J.actuatorfrcrange[1], [2],
+    /// and actuator.A.kp, actuator.A.kv tunable between steps). Joint coordinates are
     /// MuJoCo's qpos (angles in the
     /// file's <compiler angle> unit, degrees by default). What is not reproduced is noted in
     /// the output; tendons, muscles, flex, composites and plugins are refused.

@@ -77,6 +77,11 @@ pub fn read_param(acc: Accessor, def: &ModelDef, settings: &SolverSettings) -> O
         Accessor::StopDamping(j) => def.joints.get(j).map(|j| j.limits.stop_damping),
         Accessor::Armature(j) => def.joints.get(j).map(|j| j.armature),
         Accessor::Friction(j) => def.joints.get(j).map(|j| j.friction),
+        Accessor::ActuatorForce(j, k) => def
+            .joints
+            .get(j)
+            .and_then(|j| j.limits.actuator_force)
+            .map(|r| r[k]),
         Accessor::ActuatorGear(a) => def.actuators.get(a).map(|a| a.gear),
         Accessor::ActuatorKp(a) => def.actuators.get(a).map(|a| a.law.gains()[0]),
         Accessor::ActuatorKv(a) => def.actuators.get(a).map(|a| a.law.gains()[1]),
@@ -215,6 +220,13 @@ pub fn write_param(
         Accessor::Friction(j) => {
             named("friction", ranges::non_negative(value))?;
             def.joints.get_mut(j).ok_or("no such joint")?.friction = value;
+        }
+        Accessor::ActuatorForce(j, k) => {
+            // lo < hi is checked when the model is built (`joint_actuator::invalid_range`), so
+            // that either end can be set first
+            named("actuatorfrcrange", ranges::any_finite(value))?;
+            let range = limits(def, j)?.actuator_force.as_mut();
+            range.ok_or("no actuator force range")?[k] = value;
         }
         Accessor::ActuatorGear(a) => {
             named("gear", ranges::non_zero(value))?;

@@ -154,6 +154,17 @@ fn limit_parameters(b: &mut Builder, joint: usize, j: &JointDef) {
             Accessor::StopDamping(joint),
         );
     }
+    if let Some(range) = l.actuator_force {
+        for (k, (end, v)) in ["lower", "upper"].iter().zip(range).enumerate() {
+            b.fixed(
+                format!("joint.{n}.actuatorfrcrange[{}]", k + 1),
+                v,
+                Some(force),
+                format!("{end} end of the range that clamps the sum of the [[actuator]]s' forces on joint {n} (MuJoCo's actuatorfrcrange; checked lo < hi when the model is built)"),
+                Accessor::ActuatorForce(joint, k),
+            );
+        }
+    }
     if l.effort.is_finite() {
         b.fixed(
             format!("joint.{n}.effort"),

@@ -202,6 +202,8 @@ pub enum Accessor {
     Armature(usize),
     /// `joint.J.friction` (fixed).
     Friction(usize),
+    /// `joint.J.actuatorfrcrange[k]` (fixed; `k` 0 for the lower end, 1 for the upper).
+    ActuatorForce(usize, usize),
     /// `actuator.A.gear` (fixed; index in `ModelDef::actuators`).
     ActuatorGear(usize),
     /// `actuator.A.kp` of a position servo (tunable).
