@@ -21,6 +21,7 @@
 //! state's, so the rotation-vector coordinates are perturbations about the end's orientations.
 
 use super::loop_closure::Closure;
+use super::scalar::cm;
 use super::tree_dynamics::{c, Real, TreeDynamics};
 use nalgebra::{DMatrix, DVector, Matrix3, Vector3};
 use num_dual::Dual64;
@@ -167,6 +168,9 @@ impl TreeDynamics {
             None => lu.solve(&DVector::from_vec(b0)).ok_or_else(singular)?,
         };
         let m0 = self.motion(q, &vec![0.0; n], None);
+        // the bodies' centres of mass and world inertias at the end, once for every column
+        let phis: Vec<Vector3<f64>> = (0..nb).map(|b| self.com_of(&m0, b).0).collect();
+        let iws: Vec<Matrix3<f64>> = (0..nb).map(|b| self.inertia_world(&m0, b)).collect();
         // δq = M⁻¹ Σ J_bᵀ (m δφ, I δθ), every column by one solve
         let mut rq = DMatrix::zeros(n, cols.cols);
         for col in 0..cols.cols {
@@ -175,9 +179,8 @@ impl TreeDynamics {
             for b in 0..nb {
                 let dphi = Vector3::new(xi[6 * b], xi[6 * b + 1], xi[6 * b + 2]);
                 let dth = Vector3::new(xi[6 * b + 3], xi[6 * b + 4], xi[6 * b + 5]);
-                let (phi, _) = self.com_of(&m0, b);
                 f[b] = dphi * self.body_mass(b);
-                nn[b] = self.inertia_world(&m0, b) * dth + phi.cross(&f[b]);
+                nn[b] = iws[b] * dth + phis[b].cross(&f[b]);
             }
             rq.set_column(col, &DVector::from_vec(self.generalized(&m0, f, nn)));
         }
@@ -252,7 +255,8 @@ impl TreeDynamics {
             Vector3::new(x[o], x[o + 1], x[o + 2])
         };
         for b in 0..nb {
-            let e = euler(&self.body_inertia::<T>(b));
+            // the Euler tensor is a constant of the body: formed in f64, lifted
+            let e = cm::<T>(&euler(&self.body_inertia::<f64>(b)));
             let mut l = Vector3::zeros();
             for i in 0..3 {
                 let mut p = Vector3::zeros();

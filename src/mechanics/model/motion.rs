@@ -20,9 +20,10 @@ pub struct Motion<T: Real> {
     pub v: Vec<Vector3<T>>,
     /// Angular velocity.
     pub w: Vec<Vector3<T>>,
-    /// Acceleration of the frame origin.
+    /// Acceleration of the frame origin (zero where the motion was formed without
+    /// accelerations).
     pub a: Vec<Vector3<T>>,
-    /// Angular acceleration.
+    /// Angular acceleration (as `a`).
     pub al: Vec<Vector3<T>>,
     /// Per rate: the twist it gives its subtree, `(ω_k, u_k)` about the point `p_k`.
     pub(crate) cols: Vec<(Vector3<T>, Vector3<T>, Vector3<T>)>,

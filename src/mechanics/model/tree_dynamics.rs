@@ -354,7 +354,8 @@ impl TreeDynamics {
         }
     }
 
-    /// Poses, twists and (with `nud`) accelerations of every body at `(q, ν, ν̇)`.
+    /// Poses, twists and (with `nud`) accelerations of every body at `(q, ν, ν̇)`; without
+    /// `nud` the accelerations are left at zero (not the velocity-product terms at `ν̇ = 0`).
     #[allow(clippy::too_many_lines)]
     pub fn motion<T: Real>(&self, q: &[T], nu: &[T], nud: Option<&[T]>) -> Motion<T> {
         let nb = self.mass.len();
@@ -369,6 +370,8 @@ impl TreeDynamics {
             cols: vec![(z, z, z); self.coords.len()],
         };
         let zeros = vec![T::zero(); self.coords.len()];
+        // without accelerations their terms are left at zero (most passes: poses and twists)
+        let acc = nud.is_some();
         let nud = nud.unwrap_or(&zeros);
         for &b in &self.order {
             match self.parent_of[b] {
@@ -393,18 +396,25 @@ impl TreeDynamics {
                         None => (z, Matrix3::identity(), z, z, z, z),
                     };
                     let (mrel, tau, cols, bias_w) = self.local(j, jd, q, nu);
-                    let r_j = mm(&r_p, &cm::<T>(&jd.pf_r));
+                    // frames aligned with their bodies (most URDF joints) need no product
+                    let r_j = if jd.pf_r == Mat3::identity() {
+                        r_p
+                    } else {
+                        mm(&r_p, &cm::<T>(&jd.pf_r))
+                    };
                     let arm = mv(&r_p, &cv::<T>(&jd.pf_t));
                     let o_j = o_p + arm;
                     let v_j = v_p + w_p.cross(&arm);
-                    let a_j = a_p + al_p.cross(&arm) + w_p.cross(&w_p.cross(&arm));
                     let (mut w_rel, mut tau_d, mut w_acc, mut tau_acc) = (z, z, bias_w, z);
                     for (k, (ak, bk)) in cols.iter().enumerate() {
-                        let (nk, ndk) = (nu[jd.at + k], nud[jd.at + k]);
+                        let nk = nu[jd.at + k];
                         w_rel += ak * nk;
                         tau_d += bk * nk;
-                        w_acc += ak * ndk;
-                        tau_acc += bk * ndk;
+                        if acc {
+                            let ndk = nud[jd.at + k];
+                            w_acc += ak * ndk;
+                            tau_acc += bk * ndk;
+                        }
                     }
                     let tau_w = mv(&r_j, &tau);
                     let tau_dw = mv(&r_j, &tau_d);
@@ -413,21 +423,28 @@ impl TreeDynamics {
                     let w_rel_w = mv(&r_j, &w_rel);
                     let w_c = w_p + w_rel_w;
                     let v_c = v_j + w_p.cross(&tau_w) + tau_dw;
-                    let al_c = al_p + w_p.cross(&w_rel_w) + mv(&r_j, &w_acc);
-                    let a_c = a_j
-                        + al_p.cross(&tau_w)
-                        + w_p.cross(&w_p.cross(&tau_w))
-                        + w_p.cross(&tau_dw) * c::<T>(2.0)
-                        + mv(&r_j, &tau_acc);
-                    let r_b = mm(&r_c, &cm::<T>(&jd.cf_r.transpose()));
+                    let r_b = if jd.cf_r == Mat3::identity() {
+                        r_c
+                    } else {
+                        mm(&r_c, &cm::<T>(&jd.cf_r.transpose()))
+                    };
                     let o_b = o_c - mv(&r_b, &cv::<T>(&jd.cf_t));
                     let arm2 = o_b - o_c;
                     m.o[b] = o_b;
                     m.r[b] = r_b;
                     m.w[b] = w_c;
                     m.v[b] = v_c + w_c.cross(&arm2);
-                    m.al[b] = al_c;
-                    m.a[b] = a_c + al_c.cross(&arm2) + w_c.cross(&w_c.cross(&arm2));
+                    if acc {
+                        let a_j = a_p + al_p.cross(&arm) + w_p.cross(&w_p.cross(&arm));
+                        let al_c = al_p + w_p.cross(&w_rel_w) + mv(&r_j, &w_acc);
+                        let a_c = a_j
+                            + al_p.cross(&tau_w)
+                            + w_p.cross(&w_p.cross(&tau_w))
+                            + w_p.cross(&tau_dw) * c::<T>(2.0)
+                            + mv(&r_j, &tau_acc);
+                        m.al[b] = al_c;
+                        m.a[b] = a_c + al_c.cross(&arm2) + w_c.cross(&w_c.cross(&arm2));
+                    }
                     for (k, (ak, bk)) in cols.iter().enumerate() {
                         m.cols[jd.at + k] = (mv(&r_j, ak), mv(&r_j, bk), o_c);
                     }
