@@ -5,7 +5,8 @@
 //! partial derivatives and one O(N) articulated-body solve per column: O(N²) on a chain.
 //!
 //! `step_map/*`: the exact discrete-time Ad, Bd of one communication step of 1 ms (one sub-step
-//! at the default max_step, `Simulation::step_map`): per stage three Newton-matrix assemblies,
+//! at the default max_step, `Simulation::step_map`; the chains with a torque input on every
+//! joint): per stage three Newton-matrix assemblies,
 //! two factorisations, and one O(N) back-substitution per column (2n + inputs): O(N²).
 //!
 //! Run: `cargo bench --bench linearize -- --warm-up-time 1 --measurement-time 5`.
@@ -46,7 +47,15 @@ fn bench(c: &mut Criterion) {
     g.finish();
     let mut g = c.benchmark_group("step_map");
     let robot = (def, "robot_arm".to_string());
-    let chains = [10, 100].map(|n| (common::chain(n), format!("chain{n}")));
+    // a motor on every joint, as MuJoCo's chain in `bench/transition_mujoco.py`: 2N states,
+    // N inputs
+    let chains = [10, 100].map(|n| {
+        let mut def = common::chain(n);
+        for j in &mut def.joints {
+            j.actuated = true;
+        }
+        (def, format!("chain{n}"))
+    });
     for (def, name) in std::iter::once(robot).chain(chains) {
         let sim = triad::sim::Simulation::new(&def, SolverSettings::default(), 0.0).expect("sim");
         g.bench_function(name, |b| {

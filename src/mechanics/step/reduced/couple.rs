@@ -126,7 +126,7 @@ pub(crate) fn residual(model: &Model, rw: &mut RedWork) -> f64 {
     }
     let mut res = 0.0_f64;
     for &b in &cp.bodies {
-        let (m, br) = (&rw.p[b], &model.bodies[b]);
+        let (m, br) = (&rw.fp[b], &model.bodies[b]);
         for k in 0..m.f() {
             let s = if k < m.fr { br.ms } else { br.fs };
             res = res.max((cp.keep[b][k] * s).abs());
