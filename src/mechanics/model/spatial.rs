@@ -16,8 +16,9 @@
 //!   Y = [I_G + m ĉ ĉᵀ, m ĉ; m ĉᵀ, m 1],   momentum h = Y V
 //! ```
 
+use super::scalar::{hat, Real};
 use crate::math::{skew, Mat3, Vec3};
-use nalgebra::{Matrix6, Vector6};
+use nalgebra::{Matrix3, Matrix6, Vector3, Vector6};
 
 /// A spatial motion or force vector (module layout: angular part first).
 pub(crate) type V6 = Vector6<f64>;
@@ -70,18 +71,19 @@ pub(crate) fn crf(m: &V6) -> M6 {
 }
 
 /// The spatial inertia about `O` of a body of mass `mass` (kg) with its centre of mass at `c`
-/// (world, m) and inertia `ig` about it (world axes, kg·m²).
+/// (world, m) and inertia `ig` about it (world axes, kg·m²), in any scalar of the dynamics
+/// (`f64` here, dual numbers in `TreeDynamics::mass_matrix`).
 #[must_use]
-pub(crate) fn inertia(mass: f64, c: &Vec3, ig: &Mat3) -> M6 {
-    let ch = skew(c);
-    let mut y = M6::zeros();
+pub(crate) fn inertia<T: Real>(mass: T, c: &Vector3<T>, ig: &Matrix3<T>) -> Matrix6<T> {
+    let ch = hat(c);
+    let mut y = Matrix6::<T>::zeros();
     y.fixed_view_mut::<3, 3>(0, 0)
         .copy_from(&(ig + ch * ch.transpose() * mass));
     y.fixed_view_mut::<3, 3>(0, 3).copy_from(&(ch * mass));
     y.fixed_view_mut::<3, 3>(3, 0)
         .copy_from(&(ch.transpose() * mass));
     y.fixed_view_mut::<3, 3>(3, 3)
-        .copy_from(&(Mat3::identity() * mass));
+        .copy_from(&(Matrix3::identity() * mass));
     y
 }
 

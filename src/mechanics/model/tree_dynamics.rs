@@ -833,16 +833,7 @@ impl TreeDynamics {
         for b in 0..nb {
             let (cg, _) = self.com_of(&m, b);
             let iw = self.inertia_world(&m, b);
-            let (ch, mass) = (hat(&cg), c::<T>(self.mass[b]));
-            let mut blk = S6::<T>::zeros();
-            blk.fixed_view_mut::<3, 3>(0, 0)
-                .copy_from(&(iw + ch * ch.transpose() * mass));
-            blk.fixed_view_mut::<3, 3>(0, 3).copy_from(&(ch * mass));
-            blk.fixed_view_mut::<3, 3>(3, 0)
-                .copy_from(&(ch.transpose() * mass));
-            blk.fixed_view_mut::<3, 3>(3, 3)
-                .copy_from(&(Matrix3::identity() * mass));
-            ic[b] = blk;
+            ic[b] = super::spatial::inertia(c::<T>(self.mass[b]), &cg, &iw);
         }
         for &b in self.order.iter().rev() {
             if let (_, Some(p)) = self.own_dofs(b) {

@@ -58,8 +58,6 @@ pub(crate) fn reaction(
     let zero: Nodes = [Vec3::zeros(); 4];
     let dqa = jt.parent.map_or(zero, |a| body_nodes(&ws.dq, a));
     let dqb = body_nodes(&ws.dq, jt.child);
-    let qa_n = jt.parent.map_or(zero, |a| body_nodes(&ws.qn, a));
-    let qb_n = body_nodes(&ws.qn, jt.child);
     let f = mu * w;
     let Acc {
         fa,
@@ -111,6 +109,8 @@ pub(crate) fn reaction(
             }
         }
         DofRt::Slide(sr) => {
+            let qa_n = jt.parent.map_or(zero, |a| body_nodes(&ws.qn, a));
+            let qb_n = body_nodes(&ws.qn, jt.child);
             let ds = row_increment(sr, &p.qa_bar, &p.qb_bar, &dqa, &dqb);
             let g = w * (sr.eval(&qa_n, &qb_n) + ds);
             let nodes = (&mut *fa, &mut *fb, &mut ws.cbody[..], &mut *cab);

@@ -3,7 +3,7 @@
 //! twists, set by each evaluation, and the factors of the Schur matrix `S = G J⁻¹ E`.
 
 use super::maps::V6;
-use crate::mechanics::model::runtime::Model;
+use crate::mechanics::model::runtime::{CouplingRt, Model};
 
 /// One coupling's entries of the bordered solve, set by each evaluation.
 #[derive(Clone, Copy, Debug)]
@@ -17,6 +17,25 @@ pub(crate) struct Slot {
     /// Its rows `G_c` on the body twists: `(body, row)` for the two joints' children and
     /// parents (`usize::MAX`: the world).
     pub row: [(usize, V6); 4],
+}
+
+impl Slot {
+    /// Sets the column and the rows of coupling `cp` on its joint `j` (child `b`, parent `a`,
+    /// `None`: the world): `col` (a wrench on the child if `wrench`, else the rates' entries)
+    /// and the rows on the child's and the parent's twists.
+    pub fn put(
+        &mut self,
+        (cp, j): (&CouplingRt, usize),
+        (b, a): (usize, Option<usize>),
+        (col, wrench): (V6, bool),
+        [row_b, row_a]: [V6; 2],
+    ) {
+        // the following joint's entries first (`CouplingRt::weighted`)
+        let k = usize::from(cp.b != j);
+        self.col[k] = (b, col, wrench);
+        self.row[2 * k] = (b, row_b);
+        self.row[2 * k + 1] = (a.unwrap_or(usize::MAX), row_a);
+    }
 }
 
 /// Per-model coupling data of the reduced iteration (empty without couplings).

@@ -170,11 +170,8 @@ fn reactions(
         let slot = &mut cpl.slots[c];
         slot.g += r.g;
         if jac {
-            // the following joint's entries first (`coupling::weighted`)
-            let k = usize::from(model.couplings[c].b != j);
-            slot.col[k] = (p.b, r.col[0], true);
-            slot.row[2 * k] = (p.b, r.row[0]);
-            slot.row[2 * k + 1] = (p.a.unwrap_or(usize::MAX), r.row[1]);
+            let cp = (&model.couplings[c], j);
+            slot.put(cp, (p.b, p.a), (r.col[0], true), r.row);
         }
     }
 }

@@ -204,14 +204,17 @@ pub(crate) fn joint_row(
         let slot = &mut slots[c];
         slot.g += w * (ws.ang[jt.turn0] + tl.step.dt);
         if jac {
-            let k = usize::from(model.couplings[c].b != j);
             let e = w * (tl.unit[0] * fr.rows[0].kappa + tl.unit[1] * fr.rows[1].kappa);
             let (vs, vc) = (fr.d_value(0), fr.d_value(1));
             let (ts, tc) = (w * tl.ddt[0], w * tl.ddt[1]);
             let rb = vs.0 * ts + vc.0 * tc;
-            slot.col[k] = (b, [e, 0.0, 0.0, 0.0, 0.0, 0.0], false);
-            slot.row[2 * k] = (b, rot6(&rb));
-            slot.row[2 * k + 1] = (a.unwrap_or(usize::MAX), rot6(&-rb));
+            let col = ([e, 0.0, 0.0, 0.0, 0.0, 0.0], false);
+            slot.put(
+                (&model.couplings[c], j),
+                (b, a),
+                col,
+                [rot6(&rb), rot6(&-rb)],
+            );
         }
     }
     out
