@@ -8,7 +8,7 @@
 //! protocol), the iterations, the stages handed to the multiplier form, and on stderr the
 //! energy balance `E − E₀ − work` at the end. Same settings as `benches/step.rs` (order 2,
 //! h = 1e-3, tolerance 1e-10). Environment: `TRIAD_MULTIPLIERS=1` solves trees in the
-//! multiplier form too, `TRIAD_REDUCED=1` every tree in the reduced form (the default); `TRIAD_ARMATURE=A` puts a rotor inertia A on every joint; `TRIAD_COUPLED=1` makes every second joint follow the one before it (ratio 0.5, as `benches/joint_space.rs`); `TRIAD_TRACE=1` prints the energy balance, iterations, stages handed back, energy, work, time and the largest body angular velocity after every step; `TRIAD_ORDER4=1` steps with the
+//! multiplier form too, `TRIAD_REDUCED=1` every tree in the reduced form (the default); `TRIAD_ARMATURE=A` puts a rotor inertia A on every joint; `TRIAD_COUPLED=1` makes every second joint follow the one before it (ratio 0.5, as `benches/joint_space.rs`); `TRIAD_STEPMAP=1` times the exact Ad, Bd of one step of h (a motor on every joint) instead of stepping; `TRIAD_TRACE=1` prints the energy balance, iterations, stages handed back, energy, work, time and the largest body angular velocity after every step; `TRIAD_ORDER4=1` steps with the
 //! order-4 composition (`TRIAD_STAGES5=1`: Suzuki's five stages instead of the triple jump).
 use triad::mechanics::{step_state, Model, SolverSettings, State};
 
@@ -91,6 +91,20 @@ fn main() {
         max_iterations: 20,
         ..SolverSettings::default()
     };
+    if std::env::var_os("TRIAD_STEPMAP").is_some() {
+        // Ad, Bd of one communication step of h, a motor on every joint (benches/linearize.rs)
+        for j in &mut def.joints {
+            j.actuated = true;
+        }
+        let sim = triad::sim::Simulation::new(&def, s, 0.0).expect("sim");
+        let t0 = std::time::Instant::now();
+        for _ in 0..n {
+            std::hint::black_box(sim.clone().step_map(h).expect("Ad, Bd"));
+        }
+        let ms = t0.elapsed().as_secs_f64() * 1e3 / n as f64;
+        println!("{which}: {n} step maps, {ms:.3} ms each");
+        return;
+    }
     let t_build = std::time::Instant::now();
     let mut m = Model::new(&def, s).expect("model");
     if std::env::var_os("TRIAD_MULTIPLIERS").is_some() {

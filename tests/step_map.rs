@@ -240,3 +240,83 @@ fn step_map_tends_to_the_continuous_model() {
         assert!((1.9..2.1).contains(&r), "ratio {r}: {e1:e} {e2:e} {e3:e}");
     }
 }
+
+/// A deterministic pseudo-random number in (−1, 1) of `i`.
+fn wiggle(i: usize) -> f64 {
+    ((i as f64 + 1.0) * 12.9898).sin() * 0.5 + ((i as f64) * 78.233).cos() * 0.5
+}
+
+/// The embedding's and the read-off's tangents (analytic spatial sweeps, `model::minimal`)
+/// agree with dual-number passes of the kinematics, the rate load and the inverse dynamics to
+/// round-off: every joint type, a floating base, rotors; at a moving state whose nodal
+/// velocities are off the tree's (as at a step's end, where `b − M ν` vanishes only projected
+/// on the rates, so the rates' axes' own motion counts).
+#[test]
+fn embedding_and_readoff_tangents_agree_with_dual_passes() {
+    use num_dual::Dual64;
+    use triad::mechanics::NodalColumns;
+    let rotors = with_armature(ALL_KINDS);
+    for (name, text) in [
+        ("all kinds", ALL_KINDS),
+        ("floating", FLOATING),
+        ("all kinds with rotors", rotors.as_str()),
+    ] {
+        let (def, settings) = lower(text);
+        let mut sim = Simulation::new(&def, settings, 0.0).unwrap();
+        let m = sim.model().inputs().len();
+        sim.state_mut().inputs_mut().copy_from_slice(&U[..m]);
+        sim.advance(0.05).unwrap();
+        let op = sim.operating().unwrap();
+        let td = &op.dynamics;
+        let (n, nb) = (op.q.len(), def.bodies.len());
+        // the embedding against a dual pass of the nodal coordinates
+        let emb = td.embed_tangent(&op.q, &op.nu);
+        let mut worst: f64 = 0.0;
+        for col in 0..2 * n {
+            let qd: Vec<Dual64> = (0..n)
+                .map(|i| Dual64::new(op.q[i], f64::from(u8::from(col == i))))
+                .collect();
+            let vd: Vec<Dual64> = (0..n)
+                .map(|i| Dual64::new(op.nu[i], f64::from(u8::from(col == n + i))))
+                .collect();
+            let (x, v) = td.nodal(&qd, &vd);
+            for b in 0..nb {
+                let mut th = Vec3::zeros();
+                for i in 0..3 {
+                    let o = 12 * b + 3 + 3 * i;
+                    let d = Vec3::new(x[o].re, x[o + 1].re, x[o + 2].re);
+                    let dd = Vec3::new(x[o].eps, x[o + 1].eps, x[o + 2].eps);
+                    th += d.cross(&dd) * 0.5;
+                }
+                for a in 0..3 {
+                    let at = col * 6 * nb + 6 * b;
+                    worst = worst.max((emb.xi[at + a] - x[12 * b + a].eps).abs());
+                    worst = worst.max((emb.xi[at + 3 + a] - th[a]).abs());
+                }
+            }
+            for (k, vi) in v.iter().enumerate() {
+                worst = worst.max((emb.dv[col * 12 * nb + k] - vi.eps).abs());
+            }
+        }
+        eprintln!("{name}: embedding, largest difference {worst:.1e}");
+        assert!(worst < 1e-12, "{name}: embedding {worst:e}");
+        // the read-off at nodal velocities off the tree's, along arbitrary columns
+        let (xq, mut xv) = td.nodal(&op.q, &op.nu);
+        for (i, x) in xv.iter_mut().enumerate() {
+            *x += 0.3 * wiggle(i);
+        }
+        let cols = 7;
+        let cols = NodalColumns {
+            cols,
+            xi: (0..6 * nb * cols).map(|i| wiggle(i + 1000)).collect(),
+            dv: (0..12 * nb * cols).map(|i| wiggle(i + 5000)).collect(),
+        };
+        let a = td.readoff_tangent(&op.q, &xq, &xv, &cols, None).unwrap();
+        let b = td
+            .readoff_tangent_by_duals(&op.q, &xq, &xv, &cols, None)
+            .unwrap();
+        let e = (&a - &b).norm() / b.norm();
+        eprintln!("{name}: read-off, |analytic − duals|/|duals| = {e:.1e}");
+        assert!(e < 1e-12, "{name}: read-off {e:e}");
+    }
+}

@@ -37,6 +37,7 @@ pub use model::def::{
 pub use model::error::ModelError;
 pub use model::linear::{Linear, Quantity};
 pub use model::loop_closure::{Closure, Independent};
+pub use model::minimal::NodalColumns;
 pub use model::runtime::{InputSlot, Model};
 pub use model::sticking::Sticking;
 pub use model::tree_dynamics::{linearizable, supported, Coord, TreeDynamics, Unsupported};

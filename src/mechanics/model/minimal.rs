@@ -4,24 +4,36 @@
 //!
 //! ```text
 //! embedding  φ_b = o_b + R_b c_b,  dᵢ = R_b eᵢ,  φ̇_b = v_b + ω_b × R_b c_b,  ḋᵢ = ω_b × dᵢ
-//!            per direction of x:  ξ_b = (δφ_b, ½ Σᵢ dᵢ × δdᵢ),  δv = δ(φ̇, ḋᵢ)    (dual numbers)
-//! read-off   q:  δq = M(q)⁻¹ Σ_b J_bᵀ (m_b δφ_b, I_b δθ_b)      (exact for ξ tangent to the tree)
-//!            ν = M(q)⁻¹ b,  b = Σ_b J_bᵀ (m_b φ̇_b, Σᵢ dᵢ × Σⱼ Eᵢⱼ ḋⱼ)    (the outputs' M-orthogonal
+//!            per direction (δq, δν) of x, with Z_b, δV_b of `tree_tangent`:
+//!            ξ_b = (δφ_b, δθ_b) = (Z^v + Z^ω × φ_b, Z^ω),
+//!            δφ̇_b = δV^v + δV^ω × φ_b + ω_b × δφ_b,   δḋᵢ = δV^ω × dᵢ + ω_b × (Z^ω × dᵢ)
+//! read-off q:  δq = M(q)⁻¹ Σ_b J_bᵀ (m_b δφ_b, I_b δθ_b)      (exact for ξ tangent to the tree)
+//!          ν = M(q)⁻¹ b,  b = Σ_b J_bᵀ h_b,  h_b = (L_b + φ_b × f_b, f_b) about the origin,
+//!            f_b = m_b φ̇_b,  L_b = Σᵢ dᵢ × pᵢ,  pᵢ = Σⱼ Eᵢⱼ ḋⱼ   (the outputs' M-orthogonal
 //!            projection of the nodal velocities, `projection.rs`, read as joint rates)
-//!            δν = M⁻¹ (δb − δ(M ν))        (δb by a dual pass along (δq, ξ, δv), δ(M ν) by a
-//!                                          dual pass of the inverse dynamics at rest, O(N))
+//!          δν = M⁻¹ (δb − δ(M ν)),   b − M ν = (S_kᵀ D_k)_k,   D_k = Σ_{b ∈ sub(k)} (h_b − h′_b)
+//!            h′_b = (I_b ω_b + φ_b × f′_b, f′_b),  f′_b = m_b (V^v + ω_b × φ_b): the momentum
+//!            of the rates ν;  along (δq, ξ, δv):  (δb − δ(M ν))_k = δS_kᵀ D_k + S_kᵀ δD_k,
+//!            δf = m δφ̇,  δL = Σᵢ (δθ × dᵢ) × pᵢ + dᵢ × Σⱼ Eᵢⱼ δḋⱼ,  δφ = Z^v + Z^ω × φ,
+//!            δ(h − h′) = (δL + δφ × (f − f′) + φ × (δf − δf′) − δ(I ω), δf − δf′),
+//!            δf′ = m (δV^v + δV^ω × φ + ω × δφ),  δ(I ω) = Z^ω × Iω − I (Z^ω × ω) + I δV^ω
+//!            (O(N) per column; `readoff_tangent_by_duals` takes a dual pass of the rate load
+//!            and of the inverse dynamics at rest instead, the tests' reference)
 //! loops      embedding: the tree's columns × ∂(q, ν)/∂(q_I, ν_I) (`loop_linear`); read-off:
 //!            δq as above (the perturbations are tangent to the tree), ν by the projection onto
 //!            the loops' rates [M Gᵀ; G 0][ν; μ] = [b; 0] in one dual pass; then the rows of I
 //! ```
 //!
 //! `J_b` is body `b`'s twist Jacobian at its centre of mass (`TreeDynamics::generalized`),
-//! `I_b` its world inertia about the centre of mass, `E = ½ tr(J) I − J` its Euler tensor.
-//! At the read-off the operating orientations of spherical joints and free bodies are the end
-//! state's, so the rotation-vector coordinates are perturbations about the end's orientations.
+//! `I_b` its world inertia about the centre of mass, `E = ½ tr(J) I − J` its Euler tensor,
+//! `S_k` rate `k`'s twist about the origin. At the read-off the operating orientations of
+//! spherical joints and free bodies are the end state's, so the rotation-vector coordinates are
+//! perturbations about the end's orientations.
 
 use super::loop_closure::Closure;
 use super::scalar::cm;
+use super::spatial::{join, split, V6};
+use super::tree_dynamics::tree_tangent::Along;
 use super::tree_dynamics::{c, Real, TreeDynamics};
 use nalgebra::{DMatrix, DVector, Matrix3, Vector3};
 use num_dual::Dual64;
@@ -71,6 +83,11 @@ impl NodalColumns {
 }
 
 /// Body `b`'s Euler tensor `E = ½ tr(J) I − J` (body axes).
+/// `(x[o], x[o + 1], x[o + 2])`.
+fn read3(x: &[f64], o: usize) -> Vector3<f64> {
+    Vector3::new(x[o], x[o + 1], x[o + 2])
+}
+
 fn euler<T: Real>(j: &Matrix3<T>) -> Matrix3<T> {
     Matrix3::identity() * (j.trace() * c::<T>(0.5)) - j
 }
@@ -110,33 +127,39 @@ impl TreeDynamics {
             xi: vec![0.0; 6 * nb * 2 * n],
             dv: vec![0.0; 12 * nb * 2 * n],
         };
+        let fr = self.frames(q, nu);
+        let mut al = Along::new(nb, n);
+        let (mut dq, mut dnu) = (vec![0.0; n], vec![0.0; n]);
         for col in 0..2 * n {
-            let qd: Vec<Dual64> = (0..n)
-                .map(|i| Dual64::new(q[i], f64::from(u8::from(col == i))))
-                .collect();
-            let vd: Vec<Dual64> = (0..n)
-                .map(|i| Dual64::new(nu[i], f64::from(u8::from(col == n + i))))
-                .collect();
-            let (x, v) = self.nodal(&qd, &vd);
+            let unit = if col < n {
+                &mut dq[col]
+            } else {
+                &mut dnu[col - n]
+            };
+            *unit = 1.0;
+            self.along(&fr, nu, &dq, &dnu, &mut al);
+            dq.fill(0.0);
+            dnu.fill(0.0);
             let xi = &mut out.xi[col * 6 * nb..(col + 1) * 6 * nb];
+            let dv = &mut out.dv[col * 12 * nb..(col + 1) * 12 * nb];
             for b in 0..nb {
-                let mut th = Vector3::<f64>::zeros();
-                for i in 0..3 {
-                    let o = 12 * b + 3 + 3 * i;
-                    let d = Vector3::new(x[o].re, x[o + 1].re, x[o + 2].re);
-                    let dd = Vector3::new(x[o].eps, x[o + 1].eps, x[o + 2].eps);
-                    th += d.cross(&dd) * 0.5;
-                }
+                let ((zw, zv), (dw, dvo), (w, _)) =
+                    (split(&al.z[b]), split(&al.dv[b]), split(&fr.v[b]));
+                let phi = fr.com[b];
+                let dphi = zv + zw.cross(&phi);
+                let dphid = dvo + dw.cross(&phi) + w.cross(&dphi);
                 for a in 0..3 {
-                    xi[6 * b + a] = x[12 * b + a].eps;
-                    xi[6 * b + 3 + a] = th[a];
+                    xi[6 * b + a] = dphi[a];
+                    xi[6 * b + 3 + a] = zw[a];
+                    dv[12 * b + a] = dphid[a];
                 }
-            }
-            for (o, vi) in out.dv[col * 12 * nb..(col + 1) * 12 * nb]
-                .iter_mut()
-                .zip(&v)
-            {
-                *o = vi.eps;
+                for i in 0..3 {
+                    let d = fr.r[b].column(i).into_owned();
+                    let dd = dw.cross(&d) + w.cross(&zw.cross(&d));
+                    for a in 0..3 {
+                        dv[12 * b + 3 + 3 * i + a] = dd[a];
+                    }
+                }
             }
         }
         out
@@ -149,7 +172,6 @@ impl TreeDynamics {
     ///
     /// # Errors
     /// A message when the joint-space (or the loop's constrained) mass matrix is singular.
-    #[allow(clippy::too_many_lines)]
     pub fn readoff_tangent(
         &self,
         q: &[f64],
@@ -157,6 +179,35 @@ impl TreeDynamics {
         xv: &[f64],
         cols: &NodalColumns,
         loops: Option<&Closure>,
+    ) -> Result<DMatrix<f64>, String> {
+        self.readoff(q, xq, xv, cols, loops, false)
+    }
+
+    /// [`TreeDynamics::readoff_tangent`] with the rates' part by dual-number passes of the
+    /// rate load and the inverse dynamics on trees too (slower; the reference of the analytic
+    /// path's tests).
+    ///
+    /// # Errors
+    /// As [`TreeDynamics::readoff_tangent`].
+    pub fn readoff_tangent_by_duals(
+        &self,
+        q: &[f64],
+        xq: &[f64],
+        xv: &[f64],
+        cols: &NodalColumns,
+        loops: Option<&Closure>,
+    ) -> Result<DMatrix<f64>, String> {
+        self.readoff(q, xq, xv, cols, loops, true)
+    }
+
+    fn readoff(
+        &self,
+        q: &[f64],
+        xq: &[f64],
+        xv: &[f64],
+        cols: &NodalColumns,
+        loops: Option<&Closure>,
+        duals: bool,
     ) -> Result<DMatrix<f64>, String> {
         let n = self.n();
         let nb = self.n_bodies();
@@ -185,9 +236,125 @@ impl TreeDynamics {
             rq.set_column(col, &DVector::from_vec(self.generalized(&m0, f, nn)));
         }
         let dq_all = lu.solve(&rq).ok_or_else(singular)?;
-        // δν = M⁻¹ (δb − δ(M ν)) along (δq, ξ, δv): δb by a dual pass of the rate load, δ(M ν)
-        // by a dual pass of the inverse dynamics at rest without gravity (O(N) each, where the
-        // mass matrix itself would be O(N·depth)), every column by one solve
+        let rv = if loops.is_none() && !duals {
+            self.rates_tangent(q, &nu, xq, xv, cols, &dq_all)
+        } else {
+            self.rates_tangent_by_duals(q, &nu, xq, xv, cols, &dq_all, loops)?
+        };
+        // with loops the columns of `rv` are already δν (the projection's own solve)
+        let dnu_all = if loops.is_some() {
+            rv
+        } else {
+            lu.solve(&rv).ok_or_else(singular)?
+        };
+        let mut out = DMatrix::zeros(2 * n, cols.cols);
+        out.rows_mut(0, n).copy_from(&dq_all);
+        out.rows_mut(n, n).copy_from(&dnu_all);
+        Ok(out)
+    }
+
+    /// `δb − δ(M ν)` per column of a tree at the end `(q, ν)` (module formulas; `xq`, `xv`
+    /// the nodal coordinates and velocities, `dq` the columns' `δq`): n × cols.
+    fn rates_tangent(
+        &self,
+        q: &[f64],
+        nu: &DVector<f64>,
+        xq: &[f64],
+        xv: &[f64],
+        cols: &NodalColumns,
+        dq: &DMatrix<f64>,
+    ) -> DMatrix<f64> {
+        let (n, nb) = (self.n(), self.n_bodies());
+        let nu = nu.as_slice();
+        let fr = self.frames(q, nu);
+        let node = |x: &[f64], b: usize, k: usize| read3(x, 12 * b + 3 * k);
+        // per body: its Euler tensor, directors, pᵢ = Σⱼ Eᵢⱼ ḋⱼ, momenta f, f′, I ω and the
+        // difference d = h − h′ of the nodal and the rates' momenta
+        let mut euler_t = Vec::with_capacity(nb);
+        let (mut dirs, mut ps) = (Vec::with_capacity(nb), Vec::with_capacity(nb));
+        let (mut fs, mut f1s, mut iws) = (Vec::new(), Vec::new(), Vec::new());
+        let mut big_d = vec![V6::zeros(); nb];
+        for b in 0..nb {
+            let e = euler(&self.body_inertia::<f64>(b));
+            let d: [Vector3<f64>; 3] = std::array::from_fn(|i| node(xq, b, i + 1));
+            let p: [Vector3<f64>; 3] = std::array::from_fn(|i| {
+                (0..3).fold(Vector3::zeros(), |acc, j| {
+                    acc + node(xv, b, j + 1) * e[(i, j)]
+                })
+            });
+            let l = (0..3).fold(Vector3::zeros(), |acc, i| acc + d[i].cross(&p[i]));
+            let (mass, phi) = (self.body_mass(b), fr.com[b]);
+            let f = node(xv, b, 0) * mass;
+            let (w, vo) = split(&fr.v[b]);
+            let iw = fr.inertia[b] * w;
+            let f1 = (vo + w.cross(&phi)) * mass;
+            big_d[b] = join(&(l + phi.cross(&f) - iw - phi.cross(&f1)), &(f - f1));
+            euler_t.push(e);
+            dirs.push(d);
+            ps.push(p);
+            fs.push(f);
+            f1s.push(f1);
+            iws.push(iw);
+        }
+        self.subtree_sums(&mut big_d);
+        let mut al = Along::new(nb, n);
+        let zero = vec![0.0; n];
+        let mut dd = vec![V6::zeros(); nb];
+        let mut rv = DMatrix::zeros(n, cols.cols);
+        for col in 0..cols.cols {
+            let xi = &cols.xi[col * 6 * nb..(col + 1) * 6 * nb];
+            let dv = &cols.dv[col * 12 * nb..(col + 1) * 12 * nb];
+            self.along(&fr, nu, dq.column(col).as_slice(), &zero, &mut al);
+            for b in 0..nb {
+                let (mass, phi, e) = (self.body_mass(b), fr.com[b], &euler_t[b]);
+                let dth = read3(xi, 6 * b + 3);
+                let ((zw, zv), (dw, dvo), (w, _)) =
+                    (split(&al.z[b]), split(&al.dv[b]), split(&fr.v[b]));
+                let dphi = zv + zw.cross(&phi);
+                // the nodal momentum's change
+                let df = read3(dv, 12 * b) * mass;
+                let mut dl = Vector3::zeros();
+                for i in 0..3 {
+                    let mut dp = Vector3::zeros();
+                    for j in 0..3 {
+                        dp += read3(dv, 12 * b + 3 + 3 * j) * e[(i, j)];
+                    }
+                    dl += dth.cross(&dirs[b][i]).cross(&ps[b][i]) + dirs[b][i].cross(&dp);
+                }
+                let dn = dl + dphi.cross(&fs[b]) + phi.cross(&df);
+                // the rates' momentum's change
+                let df1 = (dvo + dw.cross(&phi) + w.cross(&dphi)) * mass;
+                let iwb = &fr.inertia[b];
+                let dn1 = zw.cross(&iws[b]) - iwb * zw.cross(&w)
+                    + iwb * dw
+                    + dphi.cross(&f1s[b])
+                    + phi.cross(&df1);
+                dd[b] = join(&(dn - dn1), &(df - df1));
+            }
+            self.subtree_sums(&mut dd);
+            for k in 0..n {
+                let b = self.body_of(k);
+                rv[(k, col)] = al.ds[k].dot(&big_d[b]) + fr.s[k].dot(&dd[b]);
+            }
+        }
+        rv
+    }
+
+    /// `δb − δ(M ν)` per column by a dual pass of the rate load along `(δq, ξ, δv)` and one
+    /// of the inverse dynamics at rest without gravity; with `loops`, `δν` itself by the
+    /// projection onto the loops' rates (module formulas).
+    #[allow(clippy::too_many_arguments)]
+    fn rates_tangent_by_duals(
+        &self,
+        q: &[f64],
+        nu: &DVector<f64>,
+        xq: &[f64],
+        xv: &[f64],
+        cols: &NodalColumns,
+        dq: &DMatrix<f64>,
+        loops: Option<&Closure>,
+    ) -> Result<DMatrix<f64>, String> {
+        let (n, nb) = (self.n(), self.n_bodies());
         let nu_c: Vec<Dual64> = nu.iter().map(|&x| Dual64::from(x)).collect();
         let zero = vec![Dual64::from(0.0); n];
         let no_input = vec![Dual64::from(0.0); self.n_inputs()];
@@ -195,16 +362,13 @@ impl TreeDynamics {
         for col in 0..cols.cols {
             let xi = &cols.xi[col * 6 * nb..(col + 1) * 6 * nb];
             let dv = &cols.dv[col * 12 * nb..(col + 1) * 12 * nb];
-            let qd: Vec<Dual64> = (0..n)
-                .map(|i| Dual64::new(q[i], dq_all[(i, col)]))
-                .collect();
+            let qd: Vec<Dual64> = (0..n).map(|i| Dual64::new(q[i], dq[(i, col)])).collect();
             let mut xqd: Vec<Dual64> = xq.iter().map(|&x| Dual64::from(x)).collect();
             for b in 0..nb {
-                let dth = Vector3::new(xi[6 * b + 3], xi[6 * b + 4], xi[6 * b + 5]);
+                let dth = read3(xi, 6 * b + 3);
                 for i in 0..3 {
                     let o = 12 * b + 3 + 3 * i;
-                    let d = Vector3::new(xq[o], xq[o + 1], xq[o + 2]);
-                    let dd = dth.cross(&d);
+                    let dd = dth.cross(&read3(xq, o));
                     for a in 0..3 {
                         xqd[o + a].eps = dd[a];
                     }
@@ -231,16 +395,7 @@ impl TreeDynamics {
                 rv[(i, col)] = db[i].eps - dmnu[i].eps;
             }
         }
-        // with loops the columns of `rv` are already δν (the projection's own solve)
-        let dnu_all = if loops.is_some() {
-            rv
-        } else {
-            lu.solve(&rv).ok_or_else(singular)?
-        };
-        let mut out = DMatrix::zeros(2 * n, cols.cols);
-        out.rows_mut(0, n).copy_from(&dq_all);
-        out.rows_mut(n, n).copy_from(&dnu_all);
-        Ok(out)
+        Ok(rv)
     }
 
     /// `b = Σ_b J_bᵀ (m φ̇, Σᵢ dᵢ × Σⱼ Eᵢⱼ ḋⱼ)` at minimal `q` and nodal `xq`, `xv` (module

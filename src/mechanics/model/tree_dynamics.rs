@@ -891,6 +891,9 @@ impl TreeDynamics {
 #[path = "tree_partials.rs"]
 pub(crate) mod tree_partials;
 
+#[path = "tree_tangent.rs"]
+pub(crate) mod tree_tangent;
+
 #[cfg(test)]
 #[path = "tree_dynamics_tests.rs"]
 mod tests;
