@@ -59,7 +59,7 @@ use crate::mechanics::linalg::tree::NMAX;
 use crate::mechanics::model::constraint::DotRow;
 use crate::mechanics::model::constraint::{body_nodes, read3, LinVec};
 use crate::mechanics::model::kernels::project;
-use crate::mechanics::model::runtime::{DofRt, Model};
+use crate::mechanics::model::runtime::{DofRt, InputSlot, Model};
 
 impl Tangent {
     /// Carries the columns through the stage of size `h` that converged in `ws` (start `ws.qn`,
@@ -135,12 +135,18 @@ impl Tangent {
         // per column: the right-hand side, one solve, the end's perturbation
         let nr = model.nrows;
         let (mut y, mut ys) = (vec![0.0; 6 * nb + nr], vec![0.0; 6 * nb + nr]);
+        // the body rows of the two Jacobians' sum, once per stage (trees in blocks)
+        let summed = (!model.dense).then(|| BodyRows::sum(model, &wz, &sw));
         for c in 0..self.cols {
             let xi = &self.xi[c * 6 * nb..(c + 1) * 6 * nb];
             let dv = &self.dv[c * 12 * nb..(c + 1) * 12 * nb];
             let du = &self.du[c * nin..(c + 1) * nin];
-            matvec(model, &wz, xi, &mut y);
-            matvec(model, &sw, xi, &mut ys);
+            if let Some(sum) = &summed {
+                sum.times(model, [&wz, &sw], xi, &mut y, &mut ys);
+            } else {
+                matvec(model, &wz, xi, &mut y);
+                matvec(model, &sw, xi, &mut ys);
+            }
             joint_rows(model, ws, xi, &mut y[6 * nb..]);
             for b in 0..nb {
                 let br = &model.bodies[b];
@@ -151,12 +157,10 @@ impl Tangent {
                 // P̄ᵀ M ((Q_{n+1} − Qₙ) ξ − h δv): the inertia's share, free of cancellation
                 let vd: [Vec3; 3] = std::array::from_fn(|i| read3(dv, 12 * b + 3 + 3 * i));
                 let f = read3(dv, 12 * b) * (-h * br.mass);
+                let cj: [Vec3; 3] = std::array::from_fn(|j| dth.cross(&inc[j + 1]) - vd[j] * h);
                 let mut m = Vec3::zeros();
                 for i in 0..3 {
-                    let mut ei = Vec3::zeros();
-                    for j in 0..3 {
-                        ei += (dth.cross(&inc[j + 1]) - vd[j] * h) * br.e[(i, j)];
-                    }
+                    let ei = cj[0] * br.e[(i, 0)] + cj[1] * br.e[(i, 1)] + cj[2] * br.e[(i, 2)];
                     m += dbar[i].cross(&ei);
                 }
                 for k in 0..3 {
@@ -250,7 +254,9 @@ impl Tangent {
 
     /// The inputs' columns of `r` (6 per body each) at the root `ws` with multipliers `mu`:
     /// central differences of the residual, exact as `r` is affine in `u` (module docs);
-    /// inputs no column moves are left 0.
+    /// inputs no column moves are left 0. Inputs that load disjoint bodies are perturbed
+    /// together (`input_groups`): one pair of evaluations per group, each input's column read
+    /// on its own bodies.
     fn input_columns(&self, model: &Model, ws: &Work, mu: &[f64], held: &Held, h: f64) -> Vec<f64> {
         let nb = model.bodies.len();
         let nin = model.inputs.len();
@@ -259,15 +265,22 @@ impl Tangent {
         // one scratch copy: a residual evaluation rewrites every right-hand side it reads
         let mut wr = ws.clone();
         wr.mu.copy_from_slice(mu);
-        for i in 0..nin {
-            let used = (0..self.cols).any(|c| self.du[c * nin + i] != 0.0);
-            let s = step_for(model, i, held.inputs[i]);
-            if !used || s == 0.0 {
-                continue;
-            }
-            let mut r = [vec![0.0; 6 * nb], vec![0.0; 6 * nb]];
+        let steps: Vec<f64> = (0..nin)
+            .map(|i| {
+                let used = (0..self.cols).any(|c| self.du[c * nin + i] != 0.0);
+                if used {
+                    step_for(model, i, held.inputs[i])
+                } else {
+                    0.0
+                }
+            })
+            .collect();
+        let mut r = [vec![0.0; 6 * nb], vec![0.0; 6 * nb]];
+        for group in input_groups(model, &steps) {
             for (side, sign) in [(0, 1.0), (1, -1.0)] {
-                inputs[i] = held.inputs[i] + sign * s;
+                for &(i, _) in &group {
+                    inputs[i] = held.inputs[i] + sign * steps[i];
+                }
                 let hi = Held {
                     inputs: &inputs,
                     damping: held.damping,
@@ -282,13 +295,78 @@ impl Tangent {
                     }
                 }
             }
-            inputs[i] = held.inputs[i];
-            for e in 0..6 * nb {
-                ru[i * 6 * nb + e] = (r[0][e] - r[1][e]) / (2.0 * s);
+            for &(i, bodies) in &group {
+                inputs[i] = held.inputs[i];
+                let s = steps[i];
+                let mut take = |b: usize| {
+                    for e in 6 * b..6 * b + 6 {
+                        ru[i * 6 * nb + e] = (r[0][e] - r[1][e]) / (2.0 * s);
+                    }
+                };
+                match bodies {
+                    Some(bs) => bs.into_iter().flatten().for_each(&mut take),
+                    None => (0..nb).for_each(&mut take),
+                }
             }
         }
         ru
     }
+}
+
+/// The bodies an input loads directly: a joint's input its two bodies, a body load its body;
+/// `None` when not known (then it is perturbed alone and read on every body).
+fn input_bodies(model: &Model, i: usize) -> Option<[Option<usize>; 2]> {
+    let joint = |j: usize| {
+        let jt = &model.joints[j];
+        [jt.parent, Some(jt.child)]
+    };
+    match model.inputs[i] {
+        InputSlot::JointTorque { joint: j, .. } | InputSlot::JointForce { joint: j } => {
+            Some(joint(j))
+        }
+        InputSlot::BodyTorque { body, .. } | InputSlot::BodyForce { body, .. } => {
+            Some([Some(body), None])
+        }
+        InputSlot::ActuatorCtrl { .. } => model
+            .joints
+            .iter()
+            .position(|jt| jt.acts.list.iter().any(|a| a.input == i))
+            .map(joint),
+    }
+}
+
+/// The inputs with a non-zero step, in groups whose members load disjoint bodies (greedy, in
+/// input order; an input of unknown bodies alone), each with its bodies.
+#[allow(clippy::type_complexity)]
+fn input_groups(model: &Model, steps: &[f64]) -> Vec<Vec<(usize, Option<[Option<usize>; 2]>)>> {
+    let nb = model.bodies.len();
+    let mut groups: Vec<Vec<(usize, Option<[Option<usize>; 2]>)>> = Vec::new();
+    // per group, the bodies it loads
+    let mut taken: Vec<Vec<bool>> = Vec::new();
+    for (i, &s) in steps.iter().enumerate() {
+        if s == 0.0 {
+            continue;
+        }
+        let Some(bodies) = input_bodies(model, i) else {
+            groups.push(vec![(i, None)]);
+            taken.push(vec![true; nb]);
+            continue;
+        };
+        let free = |t: &Vec<bool>| bodies.iter().flatten().all(|&b| !t[b]);
+        let g = match taken.iter().position(free) {
+            Some(g) => g,
+            None => {
+                groups.push(Vec::new());
+                taken.push(vec![false; nb]);
+                groups.len() - 1
+            }
+        };
+        for &b in bodies.iter().flatten() {
+            taken[g][b] = true;
+        }
+        groups[g].push((i, Some(bodies)));
+    }
+    groups
 }
 
 /// The joint rows' right-hand side `∇g(q_{n+1}) Q_{n+1} ξ − ∇g(qₙ) Qₙ ξ` (the second term is 0
@@ -551,6 +629,82 @@ fn set_rhs(model: &Model, ws: &mut Work, y: &[f64]) {
         if let Some(l) = ws.border.lrow[nj + c] {
             ws.border.rc[l] = -y[6 * nb + cp.row];
         }
+    }
+}
+
+/// The body rows of the sum of two Newton matrices in tree blocks, restricted to the body
+/// columns (a column `X` has no multiplier part): per body its diagonal `D`, its parent's
+/// columns `U` and its columns in the parent's rows `L`, 6 × 6 each.
+struct BodyRows {
+    d: Vec<[f64; 36]>,
+    u: Vec<[f64; 36]>,
+    l: Vec<[f64; 36]>,
+}
+
+impl BodyRows {
+    /// The body rows of `a + b` (both assembled in blocks).
+    fn sum(model: &Model, a: &Work, b: &Work) -> Self {
+        let nb = model.bodies.len();
+        let mut out = Self {
+            d: vec![[0.0; 36]; nb],
+            u: vec![[0.0; 36]; nb],
+            l: vec![[0.0; 36]; nb],
+        };
+        for k in 0..nb {
+            let (ba, bb) = (&a.blocks[k], &b.blocks[k]);
+            for r in 0..6 {
+                for s in 0..6 {
+                    out.d[k][6 * r + s] = ba.d[r * NMAX + s] + bb.d[r * NMAX + s];
+                    out.u[k][6 * r + s] = ba.u[r * 6 + s] + bb.u[r * 6 + s];
+                    out.l[k][6 * r + s] = ba.l[r * NMAX + s] + bb.l[r * NMAX + s];
+                }
+            }
+        }
+        out
+    }
+
+    /// `y ← (A + B) x` on the body rows (`ys`, scratch, takes the loops' border couplings of
+    /// the second; the joint rows of `y` are left for `joint_rows`).
+    fn times(&self, model: &Model, ab: [&Work; 2], x: &[f64], y: &mut [f64], ys: &mut [f64]) {
+        let nb = model.bodies.len();
+        y[..6 * nb].fill(0.0);
+        for b in 0..nb {
+            let xb = &x[6 * b..6 * b + 6];
+            let xp = model.parent[b].map(|p| &x[6 * p..6 * p + 6]);
+            for r in 0..6 {
+                let (d, u) = (&self.d[b][6 * r..6 * r + 6], &self.u[b][6 * r..6 * r + 6]);
+                let mut acc = 0.0;
+                for s in 0..6 {
+                    acc += d[s] * xb[s];
+                }
+                if let Some(xp) = xp {
+                    for s in 0..6 {
+                        acc += u[s] * xp[s];
+                    }
+                }
+                y[6 * b + r] += acc;
+            }
+            if let Some(p) = model.parent[b] {
+                for r in 0..6 {
+                    let l = &self.l[b][6 * r..6 * r + 6];
+                    let mut acc = 0.0;
+                    for s in 0..6 {
+                        acc += l[s] * xb[s];
+                    }
+                    y[6 * p + r] += acc;
+                }
+            }
+        }
+        for w in ab {
+            if w.border.is_active() {
+                ys[..6 * nb].fill(0.0);
+                w.border.add_couplings_times(x, &mut ys[..6 * nb]);
+                for (a, b) in y[..6 * nb].iter_mut().zip(&ys[..6 * nb]) {
+                    *a += b;
+                }
+            }
+        }
+        ys[..6 * nb].fill(0.0);
     }
 }
 
