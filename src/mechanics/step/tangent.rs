@@ -137,6 +137,7 @@ impl Tangent {
         let (mut y, mut ys) = (vec![0.0; 6 * nb + nr], vec![0.0; 6 * nb + nr]);
         // the body rows of the two Jacobians' sum, once per stage (trees in blocks)
         let summed = (!model.dense).then(|| BodyRows::sum(model, &wz, &sw));
+        let factors = row_factors(model, ws);
         for c in 0..self.cols {
             let xi = &self.xi[c * 6 * nb..(c + 1) * 6 * nb];
             let dv = &self.dv[c * 12 * nb..(c + 1) * 12 * nb];
@@ -147,7 +148,7 @@ impl Tangent {
                 matvec(model, &wz, xi, &mut y);
                 matvec(model, &sw, xi, &mut ys);
             }
-            joint_rows(model, ws, xi, &mut y[6 * nb..]);
+            joint_rows(model, ws, &factors, xi, &mut y[6 * nb..]);
             for b in 0..nb {
                 let br = &model.bodies[b];
                 let qbar = body_nodes(&ws.qbar, b);
@@ -369,6 +370,38 @@ fn input_groups(model: &Model, steps: &[f64]) -> Vec<Vec<(usize, Option<[Option<
     groups
 }
 
+/// The linear part of `v` at the nodes `qa`, `qb` (its constant left out).
+#[inline]
+fn linear(v: &LinVec, qa: &[Vec3; 4], qb: &[Vec3; 4]) -> Vec3 {
+    let mut out = Vec3::zeros();
+    for k in 0..4 {
+        out += qa[k] * v.a[k] + qb[k] * v.b[k];
+    }
+    out
+}
+
+/// Per joint row (by its index among the rows), the factors of `joint_rows` that no column
+/// changes: `(u₁, w₁, Δu, Δw)`.
+fn row_factors(model: &Model, ws: &Work) -> Vec<[Vec3; 4]> {
+    let zero = [Vec3::zeros(); 4];
+    let of = |x: &[f64], b: Option<usize>| b.map_or(zero, |b| body_nodes(x, b));
+    let mut out = vec![[Vec3::zeros(); 4]; model.nrows];
+    for jt in &model.joints {
+        let (a, b) = (jt.parent, Some(jt.child));
+        let (qa1, qb1) = (of(&ws.q, a), of(&ws.q, b));
+        let (dqa, dqb) = (of(&ws.dq, a), of(&ws.dq, b));
+        for (k, row) in jt.rows.iter().enumerate() {
+            out[jt.row0 + k] = [
+                row.u.eval(&qa1, &qb1),
+                row.w.eval(&qa1, &qb1),
+                linear(&row.u, &dqa, &dqb),
+                linear(&row.w, &dqa, &dqb),
+            ];
+        }
+    }
+    out
+}
+
 /// The joint rows' right-hand side `∇g(q_{n+1}) Q_{n+1} ξ − ∇g(qₙ) Qₙ ξ` (the second term is 0
 /// for a column tangent to the rows at `qₙ`, but for round-off that is carried, not corrected),
 /// free of cancellation: for `g = u·w − c` with `u`, `w` affine in the nodes (linear parts
@@ -379,7 +412,7 @@ fn input_groups(model: &Model, steps: &[f64]) -> Vec<Vec<(usize, Option<[Option<
 /// ```
 ///
 /// (the value `O(h)|ξ|` is formed from terms of its own size, not from `O(|ξ|)` ones).
-fn joint_rows(model: &Model, ws: &Work, xi: &[f64], out: &mut [f64]) {
+fn joint_rows(model: &Model, ws: &Work, factors: &[[Vec3; 4]], xi: &[f64], out: &mut [f64]) {
     let zero = [Vec3::zeros(); 4];
     let of = |x: &[f64], b: Option<usize>| b.map_or(zero, |b| body_nodes(x, b));
     // (δ₀, Δδ) of body b as nodes
@@ -406,24 +439,13 @@ fn joint_rows(model: &Model, ws: &Work, xi: &[f64], out: &mut [f64]) {
     };
     for jt in &model.joints {
         let (a, b) = (jt.parent, Some(jt.child));
-        let (qa1, qb1) = (of(&ws.q, a), of(&ws.q, b));
-        let (dqa, dqb) = (of(&ws.dq, a), of(&ws.dq, b));
         let ((d0a, dda), (d0b, ddb)) = (tangents(a), tangents(b));
         for (k, row) in jt.rows.iter().enumerate() {
-            let lu = LinVec {
-                c: Vec3::zeros(),
-                ..row.u
-            };
-            let lw = LinVec {
-                c: Vec3::zeros(),
-                ..row.w
-            };
-            let (u1, w1) = (row.u.eval(&qa1, &qb1), row.w.eval(&qa1, &qb1));
-            let (du, dw) = (lu.eval(&dqa, &dqb), lw.eval(&dqa, &dqb));
-            out[jt.row0 + k] = lw.eval(&dda, &ddb).dot(&u1)
-                + lw.eval(&d0a, &d0b).dot(&du)
-                + lu.eval(&dda, &ddb).dot(&w1)
-                + lu.eval(&d0a, &d0b).dot(&dw);
+            let [u1, w1, du, dw] = &factors[jt.row0 + k];
+            out[jt.row0 + k] = linear(&row.w, &dda, &ddb).dot(u1)
+                + linear(&row.w, &d0a, &d0b).dot(du)
+                + linear(&row.u, &dda, &ddb).dot(w1)
+                + linear(&row.u, &d0a, &d0b).dot(dw);
         }
     }
     // a coupling's row g = q_b(q_{n+1}) − r q_a(q_{n+1}) − o does not depend on the stage's
