@@ -76,6 +76,7 @@ impl Tangent {
     ) -> Result<(), StepError> {
         let nb = model.bodies.len();
         let nin = model.inputs.len();
+        self.keep_start();
         // the Newton matrix at the root, with the root's multipliers
         let mut wt = ws.clone();
         evaluate(model, &mut wt, held, h, Mode::Full);

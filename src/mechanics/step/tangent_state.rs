@@ -17,8 +17,10 @@ pub struct Tangent {
     pub(crate) du: Vec<f64>,
     /// Rotor rate perturbations, one per rotor (`Model::narm`), per column, rad/s or m/s.
     pub(crate) dw: Vec<f64>,
-    /// `xi`, `dv`, `dw` at the start of the step in progress.
-    start: (Vec<f64>, Vec<f64>, Vec<f64>),
+    /// `xi`, `dv`, `dw` at the start of the step in progress, kept only once a stage moves
+    /// them (`None` while the columns are still the start: a step that is never redone, or
+    /// the last one of a run, copies nothing).
+    start: Option<(Vec<f64>, Vec<f64>, Vec<f64>)>,
     /// The model with its stop dampers and its actuators' rate terms negated, when it has any
     /// (the swapped evaluation).
     pub(crate) mirror: Option<Box<Model>>,
@@ -61,7 +63,7 @@ impl Tangent {
         });
         Self {
             cols,
-            start: (xi.clone(), dv.clone(), dw.clone()),
+            start: None,
             xi,
             dv,
             du,
@@ -72,15 +74,23 @@ impl Tangent {
 
     /// Back to the start of the step in progress.
     pub(crate) fn rewind(&mut self) {
-        self.xi.copy_from_slice(&self.start.0);
-        self.dv.copy_from_slice(&self.start.1);
-        self.dw.copy_from_slice(&self.start.2);
+        if let Some((xi, dv, dw)) = &self.start {
+            self.xi.copy_from_slice(xi);
+            self.dv.copy_from_slice(dv);
+            self.dw.copy_from_slice(dw);
+        }
     }
 
     /// The step in progress is committed: its end is the next step's start.
     pub(crate) fn accept(&mut self) {
-        self.start.0.copy_from_slice(&self.xi);
-        self.start.1.copy_from_slice(&self.dv);
-        self.start.2.copy_from_slice(&self.dw);
+        self.start = None;
+    }
+
+    /// Keeps the start of the step in progress before a stage moves the columns (once per
+    /// step).
+    pub(crate) fn keep_start(&mut self) {
+        if self.start.is_none() {
+            self.start = Some((self.xi.clone(), self.dv.clone(), self.dw.clone()));
+        }
     }
 }
