@@ -40,7 +40,9 @@
 //! right-hand side is the coupling's rate along the column at the end less that at the start.
 //!
 //! Cost per stage: two factorisations of the Newton matrix, one of the swapped one's assembly,
-//! `2 nᵤ` residual evaluations and one back-substitution per column, each O(N) on a tree.
+//! two residual evaluations per group of inputs that load disjoint bodies (a chain's joint
+//! torques: two groups), and per column one product with the two Jacobians' summed body rows
+//! and one back-substitution, each O(N) on a tree.
 //! Contacts and joint friction are not covered (`run::step_map` refuses them before a tangent
 //! exists). Loop-closing joints are: their rows' right-hand sides go to the border of the
 //! bordered solve and its off-tree couplings `X` join the products with the assembled matrix
