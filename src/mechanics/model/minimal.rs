@@ -255,6 +255,8 @@ impl TreeDynamics {
 
     /// `δb − δ(M ν)` per column of a tree at the end `(q, ν)` (module formulas; `xq`, `xv`
     /// the nodal coordinates and velocities, `dq` the columns' `δq`): n × cols.
+    // per-body loops over several parallel arrays read closer to the formulas by index
+    #[allow(clippy::needless_range_loop)]
     fn rates_tangent(
         &self,
         q: &[f64],
