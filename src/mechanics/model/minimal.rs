@@ -212,13 +212,28 @@ impl TreeDynamics {
         let n = self.n();
         let nb = self.n_bodies();
         let singular = || "the joint-space mass matrix is singular".to_string();
-        let lu = self.bodies_mass_matrix_of(q).lu();
+        // the bodies' mass matrix: articulated-body solves, O(n) per column, where the tree is
+        // a chain of joint rates; dense factors otherwise
+        let m0 = self.motion(q, &vec![0.0; n], None);
+        let art = self.mass_factors(&m0, false);
+        let lu = art
+            .is_none()
+            .then(|| self.bodies_mass_matrix_of(q).lu());
+        let solve = |mut x: DMatrix<f64>| -> Result<DMatrix<f64>, String> {
+            match (&art, &lu) {
+                (Some(a), _) => {
+                    a.solve_columns(&mut x.as_view_mut());
+                    Ok(x)
+                }
+                (None, Some(lu)) => lu.solve(&x).ok_or_else(singular),
+                (None, None) => Err(singular()),
+            }
+        };
         let b0 = self.rate_load(q, xq, xv);
         let nu = match loops {
             Some(cl) => DVector::from_vec(cl.project_rates(self, q, &b0)?),
-            None => lu.solve(&DVector::from_vec(b0)).ok_or_else(singular)?,
+            None => DVector::from_column_slice(solve(DMatrix::from_vec(n, 1, b0))?.as_slice()),
         };
-        let m0 = self.motion(q, &vec![0.0; n], None);
         // the bodies' centres of mass and world inertias at the end, once for every column
         let phis: Vec<Vector3<f64>> = (0..nb).map(|b| self.com_of(&m0, b).0).collect();
         let iws: Vec<Matrix3<f64>> = (0..nb).map(|b| self.inertia_world(&m0, b)).collect();
@@ -235,7 +250,7 @@ impl TreeDynamics {
             }
             rq.set_column(col, &DVector::from_vec(self.generalized(&m0, f, nn)));
         }
-        let dq_all = lu.solve(&rq).ok_or_else(singular)?;
+        let dq_all = solve(rq)?;
         let rv = if loops.is_none() && !duals {
             self.rates_tangent(q, &nu, xq, xv, cols, &dq_all)
         } else {
@@ -245,7 +260,7 @@ impl TreeDynamics {
         let dnu_all = if loops.is_some() {
             rv
         } else {
-            lu.solve(&rv).ok_or_else(singular)?
+            solve(rv)?
         };
         let mut out = DMatrix::zeros(2 * n, cols.cols);
         out.rows_mut(0, n).copy_from(&dq_all);

@@ -126,6 +126,41 @@ impl TreeDynamics {
         (r.order.len() == n).then_some(r)
     }
 
+    /// The articulated-body factors of the mass matrix at the motion `mo` of `q`, with the
+    /// rotors' armature or (`armature` false) the bodies' share alone; `None` for a tree with
+    /// free bodies (not a chain of joint rates) or a mass matrix that is not positive definite.
+    pub(crate) fn mass_factors(&self, mo: &Motion<f64>, armature: bool) -> Option<Articulated> {
+        let n = self.coords.len();
+        if n == 0 {
+            return None;
+        }
+        let r = self.rates(mo)?;
+        let mut own = vec![M6::zeros(); n];
+        for (b, last) in r.last.iter().enumerate() {
+            if let Some(k) = *last {
+                let (pg, _) = self.com_of(mo, b);
+                let y = inertia(self.mass[b], &(pg - r.point[b]), &self.inertia_world(mo, b));
+                // a body on a fixed joint rides on its parent's last rate
+                own[k] += shift_map(&y, &(r.point[r.body[k]] - r.point[b]));
+            }
+        }
+        let mut rotor = vec![0.0; n];
+        if armature {
+            for jd in self.joints.iter().flatten() {
+                if jd.armature > 0.0 {
+                    rotor[jd.at..jd.at + jd.kind.dof()].fill(jd.armature);
+                }
+            }
+        }
+        let mut offset = vec![Vec3::zeros(); n];
+        for k in 0..n {
+            if let Some(p) = r.prev[k] {
+                offset[k] = r.point[r.body[k]] - r.point[r.body[p]];
+            }
+        }
+        Articulated::new(&r.s, &r.prev, &offset, r.order.clone(), own, &rotor)
+    }
+
     /// Velocities and accelerations (gravity in `A₀`) of every body, and of every rate's
     /// frame before it (`V_k−`, `A_k−`), at `(ν, ν̇)` (module formulas; about the bodies'
     /// points).
