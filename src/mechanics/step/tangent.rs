@@ -140,7 +140,7 @@ impl Tangent {
         let (mut y, mut ys) = (vec![0.0; 6 * nb + nr], vec![0.0; 6 * nb + nr]);
         // the body rows of the two Jacobians' sum, once per stage (trees in blocks)
         let summed = (!model.dense).then(|| BodyRows::sum(model, &wz, &sw));
-        let factors = row_factors(model, ws);
+        let forms = row_forms(model, ws);
         for c in 0..self.cols {
             let xi = &self.xi[c * 6 * nb..(c + 1) * 6 * nb];
             let dv = &self.dv[c * 12 * nb..(c + 1) * 12 * nb];
@@ -151,7 +151,7 @@ impl Tangent {
                 matvec(model, &wz, xi, &mut y);
                 matvec(model, &sw, xi, &mut ys);
             }
-            joint_rows(model, ws, &factors, xi, &mut y[6 * nb..]);
+            joint_rows(model, ws, &forms, xi, &mut y[6 * nb..]);
             for b in 0..nb {
                 let br = &model.bodies[b];
                 let qbar = body_nodes(&ws.qbar, b);
@@ -383,23 +383,44 @@ fn linear(v: &LinVec, qa: &[Vec3; 4], qb: &[Vec3; 4]) -> Vec3 {
     out
 }
 
-/// Per joint row (by its index among the rows), the factors of `joint_rows` that no column
-/// changes: `(u₁, w₁, Δu, Δw)`.
-fn row_factors(model: &Model, ws: &Work) -> Vec<[Vec3; 4]> {
+/// Per joint row (by its index among the rows), its right-hand side in `joint_rows` as a
+/// linear form on the columns' twists, `G_A·ξ_A + G_B·ξ_B` (6 each; `G_A` zero for the world),
+/// formed once per stage from `(u₁, w₁, Δu, Δw)` (function docs): with `δ₀[0] = δφ`,
+/// `δ₀[k] = δθ × nₖ`, `Δδ[k] = δθ × Δdₖ` (k ≥ 1) and `(δθ × x)·y = δθ·(x × y)`,
+///
+/// ```text
+/// G.φ = c_w[0] Δu + c_u[0] Δw
+/// G.θ = Σ_{k≥1} c_w[k] (Δdₖ × u₁ + nₖ × Δu) + c_u[k] (Δdₖ × w₁ + nₖ × Δw)
+/// ```
+///
+/// (`c` the row's coefficients of the body's nodes; every term O(h), as in `joint_rows`).
+fn row_forms(model: &Model, ws: &Work) -> Vec<[[f64; 6]; 2]> {
     let zero = [Vec3::zeros(); 4];
     let of = |x: &[f64], b: Option<usize>| b.map_or(zero, |b| body_nodes(x, b));
-    let mut out = vec![[Vec3::zeros(); 4]; model.nrows];
+    let mut out = vec![[[0.0; 6]; 2]; model.nrows];
     for jt in &model.joints {
         let (a, b) = (jt.parent, Some(jt.child));
         let (qa1, qb1) = (of(&ws.q, a), of(&ws.q, b));
         let (dqa, dqb) = (of(&ws.dq, a), of(&ws.dq, b));
+        let (n0a, n0b) = (of(&ws.qn, a), of(&ws.qn, b));
         for (k, row) in jt.rows.iter().enumerate() {
-            out[jt.row0 + k] = [
-                row.u.eval(&qa1, &qb1),
-                row.w.eval(&qa1, &qb1),
-                linear(&row.u, &dqa, &dqb),
-                linear(&row.w, &dqa, &dqb),
-            ];
+            let (u1, w1) = (row.u.eval(&qa1, &qb1), row.w.eval(&qa1, &qb1));
+            let (du, dw) = (linear(&row.u, &dqa, &dqb), linear(&row.w, &dqa, &dqb));
+            let form = |cw: &[f64; 4], cu: &[f64; 4], n0: &[Vec3; 4], inc: &[Vec3; 4]| {
+                let phi = du * cw[0] + dw * cu[0];
+                let mut th = Vec3::zeros();
+                for i in 1..4 {
+                    th += (inc[i].cross(&u1) + n0[i].cross(&du)) * cw[i]
+                        + (inc[i].cross(&w1) + n0[i].cross(&dw)) * cu[i];
+                }
+                [phi.x, phi.y, phi.z, th.x, th.y, th.z]
+            };
+            let ga = if a.is_some() {
+                form(&row.w.a, &row.u.a, &n0a, &dqa)
+            } else {
+                [0.0; 6]
+            };
+            out[jt.row0 + k] = [ga, form(&row.w.b, &row.u.b, &n0b, &dqb)];
         }
     }
     out
@@ -415,7 +436,7 @@ fn row_factors(model: &Model, ws: &Work) -> Vec<[Vec3; 4]> {
 /// ```
 ///
 /// (the value `O(h)|ξ|` is formed from terms of its own size, not from `O(|ξ|)` ones).
-fn joint_rows(model: &Model, ws: &Work, factors: &[[Vec3; 4]], xi: &[f64], out: &mut [f64]) {
+fn joint_rows(model: &Model, ws: &Work, forms: &[[[f64; 6]; 2]], xi: &[f64], out: &mut [f64]) {
     let zero = [Vec3::zeros(); 4];
     let of = |x: &[f64], b: Option<usize>| b.map_or(zero, |b| body_nodes(x, b));
     // (δ₀, Δδ) of body b as nodes
@@ -440,15 +461,22 @@ fn joint_rows(model: &Model, ws: &Work, factors: &[[Vec3; 4]], xi: &[f64], out: 
             ],
         )
     };
+    // the joint rows by their forms on the twists (`row_forms`)
     for jt in &model.joints {
-        let (a, b) = (jt.parent, Some(jt.child));
-        let ((d0a, dda), (d0b, ddb)) = (tangents(a), tangents(b));
-        for (k, row) in jt.rows.iter().enumerate() {
-            let [u1, w1, du, dw] = &factors[jt.row0 + k];
-            out[jt.row0 + k] = linear(&row.w, &dda, &ddb).dot(u1)
-                + linear(&row.w, &d0a, &d0b).dot(du)
-                + linear(&row.u, &dda, &ddb).dot(w1)
-                + linear(&row.u, &d0a, &d0b).dot(dw);
+        let xb = &xi[6 * jt.child..6 * jt.child + 6];
+        let xa = jt.parent.map(|a| &xi[6 * a..6 * a + 6]);
+        for k in 0..jt.rows.len() {
+            let [ga, gb] = &forms[jt.row0 + k];
+            let mut v = 0.0;
+            for e in 0..6 {
+                v += gb[e] * xb[e];
+            }
+            if let Some(xa) = xa {
+                for e in 0..6 {
+                    v += ga[e] * xa[e];
+                }
+            }
+            out[jt.row0 + k] = v;
         }
     }
     // a coupling's row g = q_b(q_{n+1}) − r q_a(q_{n+1}) − o does not depend on the stage's
