@@ -58,8 +58,13 @@ fn bench(c: &mut Criterion) {
     });
     for (def, name) in std::iter::once(robot).chain(chains) {
         let sim = triad::sim::Simulation::new(&def, SolverSettings::default(), 0.0).expect("sim");
+        // a fresh copy of the run per map, outside the timing
         g.bench_function(name, |b| {
-            b.iter(|| sim.clone().step_map(1e-3).expect("Ad, Bd"));
+            b.iter_batched(
+                || sim.clone(),
+                |mut s| s.step_map(1e-3).expect("Ad, Bd"),
+                criterion::BatchSize::SmallInput,
+            );
         });
     }
     g.finish();
