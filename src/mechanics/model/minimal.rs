@@ -216,9 +216,7 @@ impl TreeDynamics {
         // a chain of joint rates; dense factors otherwise
         let m0 = self.motion(q, &vec![0.0; n], None);
         let art = self.mass_factors(&m0, false);
-        let lu = art
-            .is_none()
-            .then(|| self.bodies_mass_matrix_of(q).lu());
+        let lu = art.is_none().then(|| self.bodies_mass_matrix_of(q).lu());
         let solve = |mut x: DMatrix<f64>| -> Result<DMatrix<f64>, String> {
             match (&art, &lu) {
                 (Some(a), _) => {
@@ -257,11 +255,7 @@ impl TreeDynamics {
             self.rates_tangent_by_duals(q, &nu, xq, xv, cols, &dq_all, loops)?
         };
         // with loops the columns of `rv` are already δν (the projection's own solve)
-        let dnu_all = if loops.is_some() {
-            rv
-        } else {
-            solve(rv)?
-        };
+        let dnu_all = if loops.is_some() { rv } else { solve(rv)? };
         let mut out = DMatrix::zeros(2 * n, cols.cols);
         out.rows_mut(0, n).copy_from(&dq_all);
         out.rows_mut(n, n).copy_from(&dnu_all);
@@ -313,8 +307,9 @@ impl TreeDynamics {
             f1s.push(f1);
             iws.push(iw);
         }
-        self.subtree_sums(&mut big_d);
+        fr.subtree_sums(&mut big_d);
         let mut al = Along::new(nb, n);
+        let body_of = self.bodies_of_rates();
         let zero = vec![0.0; n];
         let mut dd = vec![V6::zeros(); nb];
         let mut rv = DMatrix::zeros(n, cols.cols);
@@ -348,9 +343,8 @@ impl TreeDynamics {
                     + phi.cross(&df1);
                 dd[b] = join(&(dn - dn1), &(df - df1));
             }
-            self.subtree_sums(&mut dd);
-            for k in 0..n {
-                let b = self.body_of(k);
+            fr.subtree_sums(&mut dd);
+            for (k, &b) in body_of.iter().enumerate() {
                 rv[(k, col)] = al.ds[k].dot(&big_d[b]) + fr.s[k].dot(&dd[b]);
             }
         }

@@ -37,6 +37,10 @@ pub(crate) struct Frames {
     pub r: Vec<Mat3>,
     /// Inertia about the centre of mass, world axes, per body (kg·m²).
     pub inertia: Vec<Mat3>,
+    /// Per body in tree order: the body, its own rates and the body it hangs on.
+    links: Vec<(usize, std::ops::Range<usize>, Option<usize>)>,
+    /// `μ(k)` per rate.
+    carried: Vec<std::ops::Range<usize>>,
 }
 
 /// A direction's displacements and twist changes (module formulas).
@@ -74,6 +78,15 @@ impl TreeDynamics {
             com: Vec::with_capacity(nb),
             r: m.r.clone(),
             inertia: Vec::with_capacity(nb),
+            links: self
+                .order
+                .iter()
+                .map(|&b| {
+                    let (own, parent) = self.own_dofs(b);
+                    (b, own, parent)
+                })
+                .collect(),
+            carried: (0..self.coords.len()).map(|k| self.carried_by(k)).collect(),
         };
         for b in 0..nb {
             out.v.push(join(&m.w[b], &(m.v[b] - m.w[b].cross(&m.o[b]))));
@@ -101,13 +114,12 @@ impl TreeDynamics {
     /// `Z_b`, `δV_b` and `δS_k` along `(δq, δν)` at `fr` and the rates `nu` into `out`
     /// (module formulas).
     pub(crate) fn along(&self, fr: &Frames, nu: &[f64], dq: &[f64], dnu: &[f64], out: &mut Along) {
-        for &b in &self.order {
-            let (own, parent) = self.own_dofs(b);
+        for (b, own, parent) in &fr.links {
             let (zp, dvp) = parent.map_or((V6::zeros(), V6::zeros()), |p| (out.z[p], out.dv[p]));
             let (mut z, mut dv) = (zp, dvp);
-            for k in own {
+            for k in own.clone() {
                 let mut zm = zp;
-                for j in self.carried_by(k) {
+                for j in fr.carried[k].clone() {
                     zm += fr.s[j] * dq[j];
                 }
                 let ds = cross_m(&zm, &fr.s[k]);
@@ -115,8 +127,8 @@ impl TreeDynamics {
                 dv += ds * nu[k] + fr.s[k] * dnu[k];
                 z += fr.s[k] * dq[k];
             }
-            out.z[b] = z;
-            out.dv[b] = dv;
+            out.z[*b] = z;
+            out.dv[*b] = dv;
         }
     }
 }
@@ -130,11 +142,18 @@ impl TreeDynamics {
         }
     }
 
+    /// The body that each rate moves.
+    pub(crate) fn bodies_of_rates(&self) -> Vec<usize> {
+        (0..self.coords.len()).map(|k| self.body_of(k)).collect()
+    }
+}
+
+impl Frames {
     /// Each body's entry of `x` replaced by the sum over its subtree.
     pub(crate) fn subtree_sums(&self, x: &mut [V6]) {
-        for &b in self.order.iter().rev() {
-            if let (_, Some(p)) = self.own_dofs(b) {
-                let xb = x[b];
+        for (b, _, parent) in self.links.iter().rev() {
+            if let Some(p) = *parent {
+                let xb = x[*b];
                 x[p] += xb;
             }
         }
