@@ -120,12 +120,19 @@ impl TreeDynamics {
     /// (`2n` columns, module formulas).
     #[must_use]
     pub fn embed_tangent(&self, q: &[f64], nu: &[f64]) -> NodalColumns {
+        self.embed_tangent_spare(q, nu, 0)
+    }
+
+    /// [`TreeDynamics::embed_tangent`] with room for `spare` more columns (zero), so that a
+    /// caller's added columns (the inputs') need no copy.
+    #[must_use]
+    pub fn embed_tangent_spare(&self, q: &[f64], nu: &[f64], spare: usize) -> NodalColumns {
         let n = self.n();
         let nb = self.n_bodies();
         let mut out = NodalColumns {
             cols: 2 * n,
-            xi: vec![0.0; 6 * nb * 2 * n],
-            dv: vec![0.0; 12 * nb * 2 * n],
+            xi: vec![0.0; 6 * nb * (2 * n + spare)],
+            dv: vec![0.0; 12 * nb * (2 * n + spare)],
         };
         let fr = self.frames(q, nu);
         let mut al = Along::new(nb, n);

@@ -50,7 +50,9 @@ pub fn begin_step_map(
     let op = Operating::picked(model, state, pick).map_err(|e| e.to_string())?;
     let (n, m) = (op.x().len() / 2, model.inputs.len());
     let nb = model.bodies.len();
-    let mut emb = op.dynamics.embed_tangent(&op.q, &op.nu);
+    // the inputs' columns follow the embedding's in the same buffers (trees)
+    let spare = if op.loops.is_none() { m } else { 0 };
+    let mut emb = op.dynamics.embed_tangent_spare(&op.q, &op.nu, spare);
     // the rotors' rates are their joints' rates: per tree column, the rotor of coordinate k
     // moves with the rate column of k
     let nt = op.dynamics.n();
