@@ -353,6 +353,9 @@ pub fn solve_tree(blocks: &mut [Block], order: &[usize], parent: &[Option<usize>
     true
 }
 
+#[path = "tree_lanes.rs"]
+pub(crate) mod lanes;
+
 #[cfg(test)]
 #[path = "tree_tests.rs"]
 mod tests;

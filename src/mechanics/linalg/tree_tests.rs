@@ -312,3 +312,52 @@ fn whole_blocks_solve_a_singular_body_block() {
     assert!(solve_tree(&mut blocks, &order, &parent));
     assert_close(&blocks, &off, &x);
 }
+
+/// The lanes' solve gives each lane the one-column solve's solution (to round-off), with a
+/// supernode factored whole among them and an unused lane left at zero.
+#[test]
+fn lanes_match_single_solves() {
+    use super::lanes::{solve_factored_lanes, Lanes, LANES};
+    let parent = [None, Some(0), Some(1), Some(1), Some(3)];
+    let order = [0, 1, 3, 4, 2];
+    let mut rng = Rng(7);
+    let (mut blocks, ..) = system(&parent, &[6, 5, 3, 0, 6], false, &mut rng);
+    blocks[3].whole = true;
+    assert!(factor_tree(&mut blocks, &order, &parent));
+    let width = LANES - 1;
+    let rhs: Vec<Vec<[f64; NMAX]>> = (0..width)
+        .map(|_| {
+            blocks
+                .iter()
+                .map(|b| std::array::from_fn(|i| if i < b.n { rng.next() } else { 0.0 }))
+                .collect()
+        })
+        .collect();
+    let mut lanes: Vec<Lanes> = vec![[[0.0; LANES]; NMAX]; blocks.len()];
+    for (l, r) in rhs.iter().enumerate() {
+        for (b, rb) in r.iter().enumerate() {
+            for i in 0..NMAX {
+                lanes[b][i][l] = rb[i];
+            }
+        }
+    }
+    solve_factored_lanes(&blocks, &order, &parent, &mut lanes);
+    for (l, r) in rhs.iter().enumerate() {
+        for (b, rb) in blocks.iter_mut().zip(r) {
+            b.r = *rb;
+        }
+        solve_factored(&mut blocks, &order, &parent);
+        for (b, lb) in blocks.iter().zip(&lanes) {
+            for i in 0..b.n {
+                let (one, many) = (b.r[i], lb[i][l]);
+                assert!(
+                    (one - many).abs() <= 1e-13 * (1.0 + one.abs()),
+                    "{one} {many}"
+                );
+            }
+        }
+    }
+    assert!(lanes
+        .iter()
+        .all(|lb| lb.iter().all(|row| row[LANES - 1] == 0.0)));
+}

@@ -42,7 +42,8 @@
 //! Cost per stage: two factorisations of the Newton matrix, one of the swapped one's assembly,
 //! two residual evaluations per group of inputs that load disjoint bodies (a chain's joint
 //! torques: two groups), and per column one product with the two Jacobians' summed body rows
-//! and one back-substitution, each O(N) on a tree.
+//! and one back-substitution (four columns at a time, `linalg::tree::lanes`), each O(N) on a
+//! tree.
 //! Contacts and joint friction are not covered (`run::step_map` refuses them before a tangent
 //! exists). Loop-closing joints are: their rows' right-hand sides go to the border of the
 //! bordered solve and its off-tree couplings `X` join the products with the assembled matrix
@@ -57,6 +58,7 @@ use super::newton::{evaluate, resolve, solve, stage_rates, Held, Mode, Work};
 pub use super::tangent_state::Tangent;
 use super::turn::{row_increment, turn_load};
 use crate::math::Vec3;
+use crate::mechanics::linalg::tree::lanes::{solve_factored_lanes, Lanes, LANES};
 use crate::mechanics::linalg::tree::NMAX;
 use crate::mechanics::model::constraint::DotRow;
 use crate::mechanics::model::constraint::{body_nodes, read3, LinVec};
@@ -137,120 +139,169 @@ impl Tangent {
         let na = model.narm;
         // per column: the right-hand side, one solve, the end's perturbation
         let nr = model.nrows;
-        let (mut y, mut ys) = (vec![0.0; 6 * nb + nr], vec![0.0; 6 * nb + nr]);
+        let mut ys = vec![0.0; 6 * nb + nr];
         // the body rows of the two Jacobians' sum, once per stage (trees in blocks)
         let summed = (!model.dense).then(|| BodyRows::sum(model, &wz, &sw));
         let forms = row_forms(model, ws);
-        for c in 0..self.cols {
-            let xi = &self.xi[c * 6 * nb..(c + 1) * 6 * nb];
-            let dv = &self.dv[c * 12 * nb..(c + 1) * 12 * nb];
-            let du = &self.du[c * nin..(c + 1) * nin];
-            if let Some(sum) = &summed {
-                sum.times(model, [&wz, &sw], xi, &mut y, &mut ys);
-            } else {
-                matvec(model, &wz, xi, &mut y);
-                matvec(model, &sw, xi, &mut ys);
-            }
-            joint_rows(model, ws, &forms, xi, &mut y[6 * nb..]);
-            for b in 0..nb {
-                let br = &model.bodies[b];
-                let qbar = body_nodes(&ws.qbar, b);
-                let dbar = [qbar[1], qbar[2], qbar[3]];
-                let inc = body_nodes(&ws.dq, b);
-                let dth = read3(xi, 6 * b + 3);
-                // P̄ᵀ M ((Q_{n+1} − Qₙ) ξ − h δv): the inertia's share, free of cancellation
-                let vd: [Vec3; 3] = std::array::from_fn(|i| read3(dv, 12 * b + 3 + 3 * i));
-                let f = read3(dv, 12 * b) * (-h * br.mass);
-                let cj: [Vec3; 3] = std::array::from_fn(|j| dth.cross(&inc[j + 1]) - vd[j] * h);
-                let mut m = Vec3::zeros();
-                for i in 0..3 {
-                    let ei = cj[0] * br.e[(i, 0)] + cj[1] * br.e[(i, 1)] + cj[2] * br.e[(i, 2)];
-                    m += dbar[i].cross(&ei);
+        // per column: the right-hand side, one solve, the end's perturbation; in groups of
+        // `LANES` columns solved together where the tree's factors stand alone
+        let lanes_ok = !model.dense && !wt.border.is_active();
+        let mut ybuf = vec![vec![0.0; 6 * nb + nr]; LANES];
+        let mut rates = vec![vec![0.0; rotors.len()]; LANES];
+        let mut lanes: Vec<Lanes> = if lanes_ok {
+            vec![[[0.0; LANES]; NMAX]; nb]
+        } else {
+            Vec::new()
+        };
+        let mut sol = vec![[0.0; 6]; nb];
+        for c0 in (0..self.cols).step_by(LANES) {
+            let width = LANES.min(self.cols - c0);
+            for l in 0..width {
+                let c = c0 + l;
+                let (y, rate_n) = (&mut ybuf[l], &mut rates[l]);
+                let xi = &self.xi[c * 6 * nb..(c + 1) * 6 * nb];
+                let dv = &self.dv[c * 12 * nb..(c + 1) * 12 * nb];
+                let du = &self.du[c * nin..(c + 1) * nin];
+                if let Some(sum) = &summed {
+                    sum.times(model, [&wz, &sw], xi, y, &mut ys);
+                } else {
+                    matvec(model, &wz, xi, y);
+                    matvec(model, &sw, xi, &mut ys);
                 }
-                for k in 0..3 {
-                    y[6 * b + k] += ys[6 * b + k] + f[k];
-                    y[6 * b + 3 + k] += ys[6 * b + 3 + k] + m[k];
+                joint_rows(model, ws, &forms, xi, &mut y[6 * nb..]);
+                for b in 0..nb {
+                    let br = &model.bodies[b];
+                    let qbar = body_nodes(&ws.qbar, b);
+                    let dbar = [qbar[1], qbar[2], qbar[3]];
+                    let inc = body_nodes(&ws.dq, b);
+                    let dth = read3(xi, 6 * b + 3);
+                    // P̄ᵀ M ((Q_{n+1} − Qₙ) ξ − h δv): the inertia's share, free of cancellation
+                    let vd: [Vec3; 3] = std::array::from_fn(|i| read3(dv, 12 * b + 3 + 3 * i));
+                    let f = read3(dv, 12 * b) * (-h * br.mass);
+                    let cj: [Vec3; 3] = std::array::from_fn(|j| dth.cross(&inc[j + 1]) - vd[j] * h);
+                    let mut m = Vec3::zeros();
+                    for i in 0..3 {
+                        let ei = cj[0] * br.e[(i, 0)] + cj[1] * br.e[(i, 1)] + cj[2] * br.e[(i, 2)];
+                        m += dbar[i].cross(&ei);
+                    }
+                    for k in 0..3 {
+                        y[6 * b + k] += ys[6 * b + k] + f[k];
+                        y[6 * b + 3 + k] += ys[6 * b + 3 + k] + m[k];
+                    }
                 }
-            }
-            for (i, &d) in du.iter().enumerate() {
-                if d != 0.0 {
-                    for e in 0..6 * nb {
-                        y[e] += d * ru[i * 6 * nb + e];
+                for (i, &d) in du.iter().enumerate() {
+                    if d != 0.0 {
+                        for e in 0..6 * nb {
+                            y[e] += d * ru[i * 6 * nb + e];
+                        }
+                    }
+                }
+                // the rotors: ∂r/∂ω₀ δω₀ = −a h P̄ᵀD δω₀, and the swapped evaluation's share of
+                // the rotor load taken with the sign of an inertia (module docs): −2a ṫₙ(ξ) P̄ᵀD
+                for (r, ro) in rotors.iter().enumerate() {
+                    let jt = &model.joints[ro.joint];
+                    let (pa, pb) = (jt.parent, Some(jt.child));
+                    let at = |x: &[f64], b: Option<usize>| {
+                        b.map_or([Vec3::zeros(); 4], |b| body_nodes(x, b))
+                    };
+                    rate_n[r] = coordinate_rate(
+                        &jt.dofs[ro.dof],
+                        &at(&ws.qn, pa),
+                        &at(&ws.qn, pb),
+                        &perturbation(&ws.qn, xi, pa),
+                        &perturbation(&ws.qn, xi, pb),
+                    );
+                    let w0 = self.dw[c * na + ro.index];
+                    let k = -jt.armature * (h * w0 + 2.0 * rate_n[r]);
+                    for e in 0..6 {
+                        y[6 * jt.child + e] += k * ro.col_b[e];
+                        if let Some(a) = pa {
+                            y[6 * a + e] += k * ro.col_a[e];
+                        }
                     }
                 }
             }
-            // the rotors: ∂r/∂ω₀ δω₀ = −a h P̄ᵀD δω₀, and the swapped evaluation's share of
-            // the rotor load taken with the sign of an inertia (module docs): −2a ṫₙ(ξ) P̄ᵀD
-            let mut rate_n = vec![0.0; rotors.len()];
-            for (r, ro) in rotors.iter().enumerate() {
-                let jt = &model.joints[ro.joint];
-                let (pa, pb) = (jt.parent, Some(jt.child));
-                let at = |x: &[f64], b: Option<usize>| {
-                    b.map_or([Vec3::zeros(); 4], |b| body_nodes(x, b))
-                };
-                rate_n[r] = coordinate_rate(
-                    &jt.dofs[ro.dof],
-                    &at(&ws.qn, pa),
-                    &at(&ws.qn, pb),
-                    &perturbation(&ws.qn, xi, pa),
-                    &perturbation(&ws.qn, xi, pb),
-                );
-                let w0 = self.dw[c * na + ro.index];
-                let k = -jt.armature * (h * w0 + 2.0 * rate_n[r]);
-                for e in 0..6 {
-                    y[6 * jt.child + e] += k * ro.col_b[e];
-                    if let Some(a) = pa {
-                        y[6 * a + e] += k * ro.col_a[e];
+            if lanes_ok {
+                // J_z Y = −y for X = ξ + Y, every column of the group at once
+                for (b, lb) in lanes.iter_mut().enumerate() {
+                    for k in 0..6 {
+                        for l in 0..LANES {
+                            lb[k][l] = if l < width { -ybuf[l][6 * b + k] } else { 0.0 };
+                        }
+                    }
+                    for k in 6..NMAX {
+                        lb[k] = [0.0; LANES];
                     }
                 }
-            }
-            // J_z Y = −y for X = ξ + Y
-            set_rhs(model, &mut wt, &y);
-            resolve(model, &mut wt);
-            // δa = Q_{n+1} Y + (Q_{n+1} − Qₙ) ξ − h δv,  δv_{n+1} = δv + (2/h) δa
-            let dvc = &mut self.dv[c * 12 * nb..(c + 1) * 12 * nb];
-            let xic = &mut self.xi[c * 6 * nb..(c + 1) * 6 * nb];
-            for b in 0..nb {
-                let (n1, inc) = (body_nodes(&ws.q, b), body_nodes(&ws.dq, b));
-                let yb: [f64; 6] = std::array::from_fn(|k| rhs_entry(model, &wt, b, k));
-                let (yp, yt) = (
-                    Vec3::new(yb[0], yb[1], yb[2]),
-                    Vec3::new(yb[3], yb[4], yb[5]),
-                );
-                let dth = read3(xic, 6 * b + 3);
-                let da: [Vec3; 4] = [
-                    yp,
-                    yt.cross(&n1[1]) + dth.cross(&inc[1]),
-                    yt.cross(&n1[2]) + dth.cross(&inc[2]),
-                    yt.cross(&n1[3]) + dth.cross(&inc[3]),
-                ];
-                for k in 0..4 {
-                    for a in 0..3 {
-                        let o = 12 * b + 3 * k + a;
-                        let v = dvc[o];
-                        dvc[o] = v + two_over_h * (da[k][a] - h * v);
+                for jt in &model.joints {
+                    for k in 0..jt.rows.len() {
+                        for l in 0..width {
+                            lanes[jt.child][6 + k][l] = -ybuf[l][6 * nb + jt.row0 + k];
+                        }
                     }
                 }
-                for k in 0..6 {
-                    xic[6 * b + k] += yb[k];
-                }
+                solve_factored_lanes(&wt.blocks, &model.order, &model.parent, &mut lanes);
             }
-            // ω₁ = 2Δt/h − ω₀: δω₁ = (2/h)(ṫ₁(ξ') − ṫₙ(ξ)) − δω₀
-            for (r, ro) in rotors.iter().enumerate() {
-                let jt = &model.joints[ro.joint];
-                let (pa, pb) = (jt.parent, Some(jt.child));
-                let at = |x: &[f64], b: Option<usize>| {
-                    b.map_or([Vec3::zeros(); 4], |b| body_nodes(x, b))
-                };
-                let rate_1 = coordinate_rate(
-                    &jt.dofs[ro.dof],
-                    &at(&ws.q, pa),
-                    &at(&ws.q, pb),
-                    &perturbation(&ws.q, xic, pa),
-                    &perturbation(&ws.q, xic, pb),
-                );
-                let w = &mut self.dw[c * na + ro.index];
-                *w = two_over_h * (rate_1 - rate_n[r]) - *w;
+            for l in 0..width {
+                let c = c0 + l;
+                let rate_n = &rates[l];
+                if lanes_ok {
+                    for (b, sb) in sol.iter_mut().enumerate() {
+                        *sb = std::array::from_fn(|k| lanes[b][k][l]);
+                    }
+                } else {
+                    // J_z Y = −y for X = ξ + Y
+                    set_rhs(model, &mut wt, &ybuf[l]);
+                    resolve(model, &mut wt);
+                    for (b, sb) in sol.iter_mut().enumerate() {
+                        *sb = std::array::from_fn(|k| rhs_entry(model, &wt, b, k));
+                    }
+                }
+                // δa = Q_{n+1} Y + (Q_{n+1} − Qₙ) ξ − h δv,  δv_{n+1} = δv + (2/h) δa
+                let dvc = &mut self.dv[c * 12 * nb..(c + 1) * 12 * nb];
+                let xic = &mut self.xi[c * 6 * nb..(c + 1) * 6 * nb];
+                for b in 0..nb {
+                    let (n1, inc) = (body_nodes(&ws.q, b), body_nodes(&ws.dq, b));
+                    let yb = sol[b];
+                    let (yp, yt) = (
+                        Vec3::new(yb[0], yb[1], yb[2]),
+                        Vec3::new(yb[3], yb[4], yb[5]),
+                    );
+                    let dth = read3(xic, 6 * b + 3);
+                    let da: [Vec3; 4] = [
+                        yp,
+                        yt.cross(&n1[1]) + dth.cross(&inc[1]),
+                        yt.cross(&n1[2]) + dth.cross(&inc[2]),
+                        yt.cross(&n1[3]) + dth.cross(&inc[3]),
+                    ];
+                    for k in 0..4 {
+                        for a in 0..3 {
+                            let o = 12 * b + 3 * k + a;
+                            let v = dvc[o];
+                            dvc[o] = v + two_over_h * (da[k][a] - h * v);
+                        }
+                    }
+                    for k in 0..6 {
+                        xic[6 * b + k] += yb[k];
+                    }
+                }
+                // ω₁ = 2Δt/h − ω₀: δω₁ = (2/h)(ṫ₁(ξ') − ṫₙ(ξ)) − δω₀
+                for (r, ro) in rotors.iter().enumerate() {
+                    let jt = &model.joints[ro.joint];
+                    let (pa, pb) = (jt.parent, Some(jt.child));
+                    let at = |x: &[f64], b: Option<usize>| {
+                        b.map_or([Vec3::zeros(); 4], |b| body_nodes(x, b))
+                    };
+                    let rate_1 = coordinate_rate(
+                        &jt.dofs[ro.dof],
+                        &at(&ws.q, pa),
+                        &at(&ws.q, pb),
+                        &perturbation(&ws.q, xic, pa),
+                        &perturbation(&ws.q, xic, pb),
+                    );
+                    let w = &mut self.dw[c * na + ro.index];
+                    *w = two_over_h * (rate_1 - rate_n[r]) - *w;
+                }
             }
         }
         Ok(())
