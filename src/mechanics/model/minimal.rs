@@ -243,17 +243,22 @@ impl TreeDynamics {
         let phis: Vec<Vector3<f64>> = (0..nb).map(|b| self.com_of(&m0, b).0).collect();
         let iws: Vec<Matrix3<f64>> = (0..nb).map(|b| self.inertia_world(&m0, b)).collect();
         // δq = M⁻¹ Σ J_bᵀ (m δφ, I δθ), every column by one solve
+        // (rate k's twist about the origin S_k against the subtree's wrench, `tree_tangent`)
+        let fr = self.frames(q, &vec![0.0; n]);
+        let body_of = self.bodies_of_rates();
+        let mut wr = vec![V6::zeros(); nb];
         let mut rq = DMatrix::zeros(n, cols.cols);
         for col in 0..cols.cols {
             let xi = &cols.xi[col * 6 * nb..(col + 1) * 6 * nb];
-            let (mut f, mut nn) = (vec![Vector3::zeros(); nb], vec![Vector3::zeros(); nb]);
             for b in 0..nb {
-                let dphi = Vector3::new(xi[6 * b], xi[6 * b + 1], xi[6 * b + 2]);
-                let dth = Vector3::new(xi[6 * b + 3], xi[6 * b + 4], xi[6 * b + 5]);
-                f[b] = dphi * self.body_mass(b);
-                nn[b] = iws[b] * dth + phis[b].cross(&f[b]);
+                let (dphi, dth) = (read3(xi, 6 * b), read3(xi, 6 * b + 3));
+                let f = dphi * self.body_mass(b);
+                wr[b] = join(&(iws[b] * dth + phis[b].cross(&f)), &f);
             }
-            rq.set_column(col, &DVector::from_vec(self.generalized(&m0, f, nn)));
+            fr.subtree_sums(&mut wr);
+            for (k, &b) in body_of.iter().enumerate() {
+                rq[(k, col)] = fr.s[k].dot(&wr[b]);
+            }
         }
         let dq_all = solve(rq)?;
         let rv = if loops.is_none() && !duals {
@@ -286,11 +291,14 @@ impl TreeDynamics {
         let nu = nu.as_slice();
         let fr = self.frames(q, nu);
         let node = |x: &[f64], b: usize, k: usize| read3(x, 12 * b + 3 * k);
-        // per body: its Euler tensor, directors, pᵢ = Σⱼ Eᵢⱼ ḋⱼ, momenta f, f′, I ω and the
-        // difference d = h − h′ of the nodal and the rates' momenta
-        let mut euler_t = Vec::with_capacity(nb);
-        let (mut dirs, mut ps) = (Vec::with_capacity(nb), Vec::with_capacity(nb));
-        let (mut fs, mut f1s, mut iws) = (Vec::new(), Vec::new(), Vec::new());
+        // per body: the column-free factors of δL and δ(I ω) (`(δθ × dᵢ) × pᵢ = (dᵢ pᵢᵀ −
+        // dᵢ·pᵢ) δθ`, `Σᵢ dᵢ × Σⱼ Eᵢⱼ δḋⱼ = Σⱼ ẽⱼ × δḋⱼ` with `ẽⱼ = Σᵢ Eᵢⱼ dᵢ`,
+        // `Z^ω × Iω − I (Z^ω × ω) = (I ω̂ − (Iω)^) Z^ω`), the momenta f, f′ and the difference
+        // d = h − h′ of the nodal and the rates' momenta
+        let mut lth: Vec<Matrix3<f64>> = Vec::with_capacity(nb);
+        let mut et: Vec<[Vector3<f64>; 3]> = Vec::with_capacity(nb);
+        let mut izw: Vec<Matrix3<f64>> = Vec::with_capacity(nb);
+        let (mut fs, mut f1s) = (Vec::with_capacity(nb), Vec::with_capacity(nb));
         let mut big_d = vec![V6::zeros(); nb];
         for b in 0..nb {
             let e = euler(&self.body_inertia::<f64>(b));
@@ -307,12 +315,19 @@ impl TreeDynamics {
             let iw = fr.inertia[b] * w;
             let f1 = (vo + w.cross(&phi)) * mass;
             big_d[b] = join(&(l + phi.cross(&f) - iw - phi.cross(&f1)), &(f - f1));
-            euler_t.push(e);
-            dirs.push(d);
-            ps.push(p);
+            let mut a = Matrix3::zeros();
+            let mut dp = 0.0;
+            for i in 0..3 {
+                a += d[i] * p[i].transpose();
+                dp += d[i].dot(&p[i]);
+            }
+            lth.push(a - Matrix3::identity() * dp);
+            et.push(std::array::from_fn(|j| {
+                d[0] * e[(0, j)] + d[1] * e[(1, j)] + d[2] * e[(2, j)]
+            }));
+            izw.push(fr.inertia[b] * w.cross_matrix() - iw.cross_matrix());
             fs.push(f);
             f1s.push(f1);
-            iws.push(iw);
         }
         fr.subtree_sums(&mut big_d);
         let mut al = Along::new(nb, n);
@@ -325,27 +340,22 @@ impl TreeDynamics {
             let dv = &cols.dv[col * 12 * nb..(col + 1) * 12 * nb];
             self.along(&fr, nu, dq.column(col).as_slice(), &zero, &mut al);
             for b in 0..nb {
-                let (mass, phi, e) = (self.body_mass(b), fr.com[b], &euler_t[b]);
+                let (mass, phi) = (self.body_mass(b), fr.com[b]);
                 let dth = read3(xi, 6 * b + 3);
                 let ((zw, zv), (dw, dvo), (w, _)) =
                     (split(&al.z[b]), split(&al.dv[b]), split(&fr.v[b]));
                 let dphi = zv + zw.cross(&phi);
                 // the nodal momentum's change
                 let df = read3(dv, 12 * b) * mass;
-                let mut dl = Vector3::zeros();
-                for i in 0..3 {
-                    let mut dp = Vector3::zeros();
-                    for j in 0..3 {
-                        dp += read3(dv, 12 * b + 3 + 3 * j) * e[(i, j)];
-                    }
-                    dl += dth.cross(&dirs[b][i]).cross(&ps[b][i]) + dirs[b][i].cross(&dp);
+                let mut dl = lth[b] * dth;
+                for j in 0..3 {
+                    dl += et[b][j].cross(&read3(dv, 12 * b + 3 + 3 * j));
                 }
                 let dn = dl + dphi.cross(&fs[b]) + phi.cross(&df);
                 // the rates' momentum's change
                 let df1 = (dvo + dw.cross(&phi) + w.cross(&dphi)) * mass;
-                let iwb = &fr.inertia[b];
-                let dn1 = zw.cross(&iws[b]) - iwb * zw.cross(&w)
-                    + iwb * dw
+                let dn1 = izw[b] * zw
+                    + fr.inertia[b] * dw
                     + dphi.cross(&f1s[b])
                     + phi.cross(&df1);
                 dd[b] = join(&(dn - dn1), &(df - df1));
