@@ -354,10 +354,7 @@ impl TreeDynamics {
                 let dn = dl + dphi.cross(&fs[b]) + phi.cross(&df);
                 // the rates' momentum's change
                 let df1 = (dvo + dw.cross(&phi) + w.cross(&dphi)) * mass;
-                let dn1 = izw[b] * zw
-                    + fr.inertia[b] * dw
-                    + dphi.cross(&f1s[b])
-                    + phi.cross(&df1);
+                let dn1 = izw[b] * zw + fr.inertia[b] * dw + dphi.cross(&f1s[b]) + phi.cross(&df1);
                 dd[b] = join(&(dn - dn1), &(df - df1));
             }
             fr.subtree_sums(&mut dd);

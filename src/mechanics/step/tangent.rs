@@ -57,7 +57,7 @@ use super::joint_loads::Pair;
 use super::newton::{evaluate, resolve, solve, stage_rates, Held, Mode, Work};
 pub use super::tangent_state::Tangent;
 use super::turn::{row_increment, turn_load};
-use crate::math::Vec3;
+use crate::math::{Mat3, Vec3};
 use crate::mechanics::linalg::tree::lanes::{solve_factored_lanes, Lanes, LANES};
 use crate::mechanics::linalg::tree::NMAX;
 use crate::mechanics::model::constraint::DotRow;
@@ -143,6 +143,23 @@ impl Tangent {
         // the body rows of the two Jacobians' sum, once per stage (trees in blocks)
         let summed = (!model.dense).then(|| BodyRows::sum(model, &wz, &sw));
         let forms = row_forms(model, ws);
+        // per body, the inertia's share `Σᵢ d̄ᵢ × Σⱼ Eᵢⱼ (δθ × Δdⱼ − h δḋⱼ)` as
+        // `M_θ δθ − h Σⱼ ẽⱼ × δḋⱼ`: ẽⱼ = Σᵢ Eᵢⱼ d̄ᵢ, M_θ = Σⱼ ((ẽⱼ·Δdⱼ) 1 − Δdⱼ ẽⱼᵀ)
+        let inertia_forms: Vec<(Mat3, [Vec3; 3])> = (0..nb)
+            .map(|b| {
+                let (qbar, inc) = (body_nodes(&ws.qbar, b), body_nodes(&ws.dq, b));
+                let e = &model.bodies[b].e;
+                let et: [Vec3; 3] = std::array::from_fn(|j| {
+                    qbar[1] * e[(0, j)] + qbar[2] * e[(1, j)] + qbar[3] * e[(2, j)]
+                });
+                let mut mth = Mat3::zeros();
+                for j in 0..3 {
+                    mth +=
+                        Mat3::identity() * et[j].dot(&inc[j + 1]) - inc[j + 1] * et[j].transpose();
+                }
+                (mth, et)
+            })
+            .collect();
         // per column: the right-hand side, one solve, the end's perturbation; in groups of
         // `LANES` columns solved together where the tree's factors stand alone
         let lanes_ok = !model.dense && !wt.border.is_active();
@@ -171,18 +188,13 @@ impl Tangent {
                 joint_rows(model, ws, &forms, xi, &mut y[6 * nb..]);
                 for b in 0..nb {
                     let br = &model.bodies[b];
-                    let qbar = body_nodes(&ws.qbar, b);
-                    let dbar = [qbar[1], qbar[2], qbar[3]];
-                    let inc = body_nodes(&ws.dq, b);
+                    let (mth, et) = &inertia_forms[b];
                     let dth = read3(xi, 6 * b + 3);
                     // P̄ᵀ M ((Q_{n+1} − Qₙ) ξ − h δv): the inertia's share, free of cancellation
-                    let vd: [Vec3; 3] = std::array::from_fn(|i| read3(dv, 12 * b + 3 + 3 * i));
                     let f = read3(dv, 12 * b) * (-h * br.mass);
-                    let cj: [Vec3; 3] = std::array::from_fn(|j| dth.cross(&inc[j + 1]) - vd[j] * h);
-                    let mut m = Vec3::zeros();
-                    for i in 0..3 {
-                        let ei = cj[0] * br.e[(i, 0)] + cj[1] * br.e[(i, 1)] + cj[2] * br.e[(i, 2)];
-                        m += dbar[i].cross(&ei);
+                    let mut m = mth * dth;
+                    for j in 0..3 {
+                        m -= et[j].cross(&read3(dv, 12 * b + 3 + 3 * j)) * h;
                     }
                     for k in 0..3 {
                         y[6 * b + k] += ys[6 * b + k] + f[k];
