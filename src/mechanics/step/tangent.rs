@@ -179,26 +179,31 @@ impl Tangent {
                 let xi = &self.xi[c * 6 * nb..(c + 1) * 6 * nb];
                 let dv = &self.dv[c * 12 * nb..(c + 1) * 12 * nb];
                 let du = &self.du[c * nin..(c + 1) * nin];
-                if let Some(sum) = &summed {
-                    sum.times(model, [&wz, &sw], xi, y, &mut ys);
+                // a column at rest (an input's, at the map's start) loads only through its input
+                if xi.iter().chain(dv).all(|&x| x == 0.0) {
+                    y.fill(0.0);
                 } else {
-                    matvec(model, &wz, xi, y);
-                    matvec(model, &sw, xi, &mut ys);
-                }
-                joint_rows(model, ws, &forms, xi, &mut y[6 * nb..]);
-                for b in 0..nb {
-                    let br = &model.bodies[b];
-                    let (mth, et) = &inertia_forms[b];
-                    let dth = read3(xi, 6 * b + 3);
-                    // P̄ᵀ M ((Q_{n+1} − Qₙ) ξ − h δv): the inertia's share, free of cancellation
-                    let f = read3(dv, 12 * b) * (-h * br.mass);
-                    let mut m = mth * dth;
-                    for j in 0..3 {
-                        m -= et[j].cross(&read3(dv, 12 * b + 3 + 3 * j)) * h;
+                    if let Some(sum) = &summed {
+                        sum.times(model, [&wz, &sw], xi, y, &mut ys);
+                    } else {
+                        matvec(model, &wz, xi, y);
+                        matvec(model, &sw, xi, &mut ys);
                     }
-                    for k in 0..3 {
-                        y[6 * b + k] += ys[6 * b + k] + f[k];
-                        y[6 * b + 3 + k] += ys[6 * b + 3 + k] + m[k];
+                    joint_rows(model, ws, &forms, xi, &mut y[6 * nb..]);
+                    for b in 0..nb {
+                        let br = &model.bodies[b];
+                        let (mth, et) = &inertia_forms[b];
+                        let dth = read3(xi, 6 * b + 3);
+                        // P̄ᵀ M ((Q_{n+1} − Qₙ) ξ − h δv): the inertia's share, free of cancellation
+                        let f = read3(dv, 12 * b) * (-h * br.mass);
+                        let mut m = mth * dth;
+                        for j in 0..3 {
+                            m -= et[j].cross(&read3(dv, 12 * b + 3 + 3 * j)) * h;
+                        }
+                        for k in 0..3 {
+                            y[6 * b + k] += ys[6 * b + k] + f[k];
+                            y[6 * b + 3 + k] += ys[6 * b + 3 + k] + m[k];
+                        }
                     }
                 }
                 for (i, &d) in du.iter().enumerate() {
