@@ -535,16 +535,7 @@ fn joint_rows(model: &Model, ws: &Work, forms: &[[[f64; 6]; 2]], xi: &[f64], out
         let xa = jt.parent.map(|a| &xi[6 * a..6 * a + 6]);
         for k in 0..jt.rows.len() {
             let [ga, gb] = &forms[jt.row0 + k];
-            let mut v = 0.0;
-            for e in 0..6 {
-                v += gb[e] * xb[e];
-            }
-            if let Some(xa) = xa {
-                for e in 0..6 {
-                    v += ga[e] * xa[e];
-                }
-            }
-            out[jt.row0 + k] = v;
+            out[jt.row0 + k] = dot_pair((gb, xb), (ga, xa));
         }
     }
     // a coupling's row g = q_b(q_{n+1}) − r q_a(q_{n+1}) − o does not depend on the stage's
@@ -753,6 +744,21 @@ fn set_rhs(model: &Model, ws: &mut Work, y: &[f64]) {
     }
 }
 
+/// `a·x + b·y` over six entries, `b·y` left out without `y` (a body at the ground).
+#[inline(always)]
+fn dot_pair((a, x): (&[f64], &[f64]), (b, y): (&[f64], Option<&[f64]>)) -> f64 {
+    let mut v = 0.0;
+    for e in 0..6 {
+        v += a[e] * x[e];
+    }
+    if let Some(y) = y {
+        for e in 0..6 {
+            v += b[e] * y[e];
+        }
+    }
+    v
+}
+
 /// The body rows of the sum of two Newton matrices in tree blocks, restricted to the body
 /// columns (a column `X` has no multiplier part): per body its diagonal `D`, its parent's
 /// columns `U` and its columns in the parent's rows `L`, 6 × 6 each.
@@ -794,15 +800,7 @@ impl BodyRows {
             let xp = model.parent[b].map(|p| &x[6 * p..6 * p + 6]);
             for r in 0..6 {
                 let (d, u) = (&self.d[b][6 * r..6 * r + 6], &self.u[b][6 * r..6 * r + 6]);
-                let mut acc = 0.0;
-                for s in 0..6 {
-                    acc += d[s] * xb[s];
-                }
-                if let Some(xp) = xp {
-                    for s in 0..6 {
-                        acc += u[s] * xp[s];
-                    }
-                }
+                let acc = dot_pair((d, xb), (u, xp));
                 y[6 * b + r] += acc;
             }
             if let Some(p) = model.parent[b] {
