@@ -30,10 +30,11 @@
 //! spherical joints and free bodies are the end state's, so the rotation-vector coordinates are
 //! perturbations about the end's orientations.
 
+use super::constraint::read3;
 use super::loop_closure::Closure;
 use super::scalar::cm;
 use super::spatial::{join, split, V6};
-use super::tree_dynamics::tree_tangent::Along;
+use super::tree_dynamics::tree_tangent::{Along, Frames};
 use super::tree_dynamics::{c, Real, TreeDynamics};
 use nalgebra::{DMatrix, DVector, Matrix3, Vector3};
 use num_dual::Dual64;
@@ -83,11 +84,6 @@ impl NodalColumns {
 }
 
 /// Body `b`'s Euler tensor `E = ½ tr(J) I − J` (body axes).
-/// `(x[o], x[o + 1], x[o + 2])`.
-fn read3(x: &[f64], o: usize) -> Vector3<f64> {
-    Vector3::new(x[o], x[o + 1], x[o + 2])
-}
-
 fn euler<T: Real>(j: &Matrix3<T>) -> Matrix3<T> {
     Matrix3::identity() * (j.trace() * c::<T>(0.5)) - j
 }
@@ -123,14 +119,14 @@ impl TreeDynamics {
         self.embed_tangent_spare(q, nu, 0)
     }
 
-    /// [`TreeDynamics::embed_tangent`] with room for `spare` more columns (zero), so that a
-    /// caller's added columns (the inputs') need no copy.
+    /// [`TreeDynamics::embed_tangent`] followed by `spare` zero columns (`2n + spare` in all),
+    /// which a caller fills (the inputs') without a copy.
     #[must_use]
     pub fn embed_tangent_spare(&self, q: &[f64], nu: &[f64], spare: usize) -> NodalColumns {
         let n = self.n();
         let nb = self.n_bodies();
         let mut out = NodalColumns {
-            cols: 2 * n,
+            cols: 2 * n + spare,
             xi: vec![0.0; 6 * nb * (2 * n + spare)],
             dv: vec![0.0; 12 * nb * (2 * n + spare)],
         };
@@ -239,30 +235,26 @@ impl TreeDynamics {
             Some(cl) => DVector::from_vec(cl.project_rates(self, q, &b0)?),
             None => DVector::from_column_slice(solve(DMatrix::from_vec(n, 1, b0))?.as_slice()),
         };
-        // the bodies' centres of mass and world inertias at the end, once for every column
-        let phis: Vec<Vector3<f64>> = (0..nb).map(|b| self.com_of(&m0, b).0).collect();
-        let iws: Vec<Matrix3<f64>> = (0..nb).map(|b| self.inertia_world(&m0, b)).collect();
-        // δq = M⁻¹ Σ J_bᵀ (m δφ, I δθ), every column by one solve
-        // (rate k's twist about the origin S_k against the subtree's wrench, `tree_tangent`)
-        let fr = self.frames(q, &vec![0.0; n]);
-        let body_of = self.bodies_of_rates();
+        // δq = M⁻¹ Σ J_bᵀ (m δφ, I δθ), every column by one solve (rate k's twist about the
+        // origin S_k against the subtree's wrench, `tree_tangent`)
+        let fr = self.frames(q, nu.as_slice());
         let mut wr = vec![V6::zeros(); nb];
         let mut rq = DMatrix::zeros(n, cols.cols);
         for col in 0..cols.cols {
             let xi = &cols.xi[col * 6 * nb..(col + 1) * 6 * nb];
-            for b in 0..nb {
+            for (b, w) in wr.iter_mut().enumerate() {
                 let (dphi, dth) = (read3(xi, 6 * b), read3(xi, 6 * b + 3));
                 let f = dphi * self.body_mass(b);
-                wr[b] = join(&(iws[b] * dth + phis[b].cross(&f)), &f);
+                *w = join(&(fr.inertia[b] * dth + fr.com[b].cross(&f)), &f);
             }
             fr.subtree_sums(&mut wr);
-            for (k, &b) in body_of.iter().enumerate() {
+            for (k, &b) in fr.body.iter().enumerate() {
                 rq[(k, col)] = fr.s[k].dot(&wr[b]);
             }
         }
         let dq_all = solve(rq)?;
         let rv = if loops.is_none() && !duals {
-            self.rates_tangent(q, &nu, xq, xv, cols, &dq_all)
+            self.rates_tangent(&fr, &nu, xq, xv, cols, &dq_all)
         } else {
             self.rates_tangent_by_duals(q, &nu, xq, xv, cols, &dq_all, loops)?
         };
@@ -274,13 +266,14 @@ impl TreeDynamics {
         Ok(out)
     }
 
-    /// `δb − δ(M ν)` per column of a tree at the end `(q, ν)` (module formulas; `xq`, `xv`
-    /// the nodal coordinates and velocities, `dq` the columns' `δq`): n × cols.
+    /// `δb − δ(M ν)` per column of a tree at the end's frames `fr` and rates `nu` (module
+    /// formulas; `xq`, `xv` the nodal coordinates and velocities, `dq` the columns' `δq`):
+    /// n × cols.
     // per-body loops over several parallel arrays read closer to the formulas by index
     #[allow(clippy::needless_range_loop)]
     fn rates_tangent(
         &self,
-        q: &[f64],
+        fr: &Frames,
         nu: &DVector<f64>,
         xq: &[f64],
         xv: &[f64],
@@ -289,7 +282,6 @@ impl TreeDynamics {
     ) -> DMatrix<f64> {
         let (n, nb) = (self.n(), self.n_bodies());
         let nu = nu.as_slice();
-        let fr = self.frames(q, nu);
         let node = |x: &[f64], b: usize, k: usize| read3(x, 12 * b + 3 * k);
         // per body: the column-free factors of δL and δ(I ω) (`(δθ × dᵢ) × pᵢ = (dᵢ pᵢᵀ −
         // dᵢ·pᵢ) δθ`, `Σᵢ dᵢ × Σⱼ Eᵢⱼ δḋⱼ = Σⱼ ẽⱼ × δḋⱼ` with `ẽⱼ = Σᵢ Eᵢⱼ dᵢ`,
@@ -331,14 +323,13 @@ impl TreeDynamics {
         }
         fr.subtree_sums(&mut big_d);
         let mut al = Along::new(nb, n);
-        let body_of = self.bodies_of_rates();
         let zero = vec![0.0; n];
         let mut dd = vec![V6::zeros(); nb];
         let mut rv = DMatrix::zeros(n, cols.cols);
         for col in 0..cols.cols {
             let xi = &cols.xi[col * 6 * nb..(col + 1) * 6 * nb];
             let dv = &cols.dv[col * 12 * nb..(col + 1) * 12 * nb];
-            self.along(&fr, nu, dq.column(col).as_slice(), &zero, &mut al);
+            self.along(fr, nu, dq.column(col).as_slice(), &zero, &mut al);
             for b in 0..nb {
                 let (mass, phi) = (self.body_mass(b), fr.com[b]);
                 let dth = read3(xi, 6 * b + 3);
@@ -358,7 +349,7 @@ impl TreeDynamics {
                 dd[b] = join(&(dn - dn1), &(df - df1));
             }
             fr.subtree_sums(&mut dd);
-            for (k, &b) in body_of.iter().enumerate() {
+            for (k, &b) in fr.body.iter().enumerate() {
                 rv[(k, col)] = al.ds[k].dot(&big_d[b]) + fr.s[k].dot(&dd[b]);
             }
         }

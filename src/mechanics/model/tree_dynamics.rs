@@ -653,11 +653,8 @@ impl TreeDynamics {
             }
         }
         let mut res = vec![T::zero(); self.coords.len()];
-        for (k, co) in self.coords.iter().enumerate() {
-            let b = match co {
-                Coord::Joint { joint, .. } => self.joints[*joint].as_ref().expect("joint").child,
-                Coord::Free { body, .. } => *body,
-            };
+        for k in 0..self.coords.len() {
+            let b = self.body_of(k);
             let (wk, uk, pk) = &m.cols[k];
             res[k] = wk.dot(&(nn[b] - pk.cross(&f[b]))) + uk.dot(&f[b]);
         }
@@ -781,6 +778,14 @@ impl TreeDynamics {
     #[must_use]
     pub fn joint_rot0(&self, j: usize) -> Mat3 {
         self.joint_rot0[j]
+    }
+
+    /// The body that rate `k` moves (a joint's child, or the free body itself).
+    fn body_of(&self, k: usize) -> usize {
+        match self.coords[k] {
+            Coord::Joint { joint, .. } => self.joints[joint].as_ref().expect("joint").child,
+            Coord::Free { body, .. } => body,
+        }
     }
 
     /// The rates of body `b`'s own joint (or free-body six), and the body its joint hangs on.

@@ -130,18 +130,28 @@ impl TreeDynamics {
     /// rotors' armature or (`armature` false) the bodies' share alone; `None` for a tree with
     /// free bodies (not a chain of joint rates) or a mass matrix that is not positive definite.
     pub(crate) fn mass_factors(&self, mo: &Motion<f64>, armature: bool) -> Option<Articulated> {
-        let n = self.coords.len();
-        if n == 0 {
+        if self.coords.is_empty() {
             return None;
         }
         let r = self.rates(mo)?;
+        let y: Vec<M6> = (0..self.mass.len())
+            .map(|b| {
+                let (pg, _) = self.com_of(mo, b);
+                inertia(self.mass[b], &(pg - r.point[b]), &self.inertia_world(mo, b))
+            })
+            .collect();
+        self.factors(&r, &y, armature)
+    }
+
+    /// The articulated-body factors of the rates `r` with the bodies' inertias `y` (about
+    /// their points) and, if `armature`, the rotors' (module formulas of `articulated`).
+    fn factors(&self, r: &Rates, y: &[M6], armature: bool) -> Option<Articulated> {
+        let n = self.coords.len();
         let mut own = vec![M6::zeros(); n];
         for (b, last) in r.last.iter().enumerate() {
             if let Some(k) = *last {
-                let (pg, _) = self.com_of(mo, b);
-                let y = inertia(self.mass[b], &(pg - r.point[b]), &self.inertia_world(mo, b));
                 // a body on a fixed joint rides on its parent's last rate
-                own[k] += shift_map(&y, &(r.point[r.body[k]] - r.point[b]));
+                own[k] += shift_map(&y[b], &(r.point[r.body[k]] - r.point[b]));
             }
         }
         let mut rotor = vec![0.0; n];
@@ -217,26 +227,7 @@ impl TreeDynamics {
             cg[b] = pg - r.point[b];
             y[b] = inertia(self.mass[b], &cg[b], &self.inertia_world(&mo, b));
         }
-        let mut armature = vec![0.0; n];
-        let mut own = vec![M6::zeros(); n];
-        let mut offset = vec![Vec3::zeros(); n];
-        for jd in self.joints.iter().flatten() {
-            if jd.armature > 0.0 {
-                armature[jd.at..jd.at + jd.kind.dof()].fill(jd.armature);
-            }
-        }
-        for (b, last) in r.last.iter().enumerate() {
-            if let Some(k) = *last {
-                // a body on a fixed joint rides on its parent's last rate
-                own[k] += shift_map(&y[b], &(r.point[r.body[k]] - r.point[b]));
-            }
-        }
-        for k in 0..n {
-            if let Some(p) = r.prev[k] {
-                offset[k] = r.point[r.body[k]] - r.point[r.body[p]];
-            }
-        }
-        let mass = Articulated::new(&r.s, &r.prev, &offset, r.order.clone(), own, &armature)?;
+        let mass = self.factors(&r, &y, true)?;
         let wext: Vec<V6> = (0..nb)
             .map(|b| join(&(ne[b] + cg[b].cross(&fe[b])), &fe[b]))
             .collect();

@@ -41,6 +41,8 @@ pub(crate) struct Frames {
     links: Vec<(usize, std::ops::Range<usize>, Option<usize>)>,
     /// `μ(k)` per rate.
     carried: Vec<std::ops::Range<usize>>,
+    /// The body each rate moves.
+    pub body: Vec<usize>,
 }
 
 /// A direction's displacements and twist changes (module formulas).
@@ -87,6 +89,7 @@ impl TreeDynamics {
                 })
                 .collect(),
             carried: (0..self.coords.len()).map(|k| self.carried_by(k)).collect(),
+            body: (0..self.coords.len()).map(|k| self.body_of(k)).collect(),
         };
         for b in 0..nb {
             out.v.push(join(&m.w[b], &(m.v[b] - m.w[b].cross(&m.o[b]))));
@@ -130,21 +133,6 @@ impl TreeDynamics {
             out.z[*b] = z;
             out.dv[*b] = dv;
         }
-    }
-}
-
-impl TreeDynamics {
-    /// The body that rate `k` moves (a joint's child, or the free body itself).
-    pub(crate) fn body_of(&self, k: usize) -> usize {
-        match self.coords[k] {
-            Coord::Joint { joint, .. } => self.joints[joint].as_ref().expect("joint").child,
-            Coord::Free { body, .. } => body,
-        }
-    }
-
-    /// The body that each rate moves.
-    pub(crate) fn bodies_of_rates(&self) -> Vec<usize> {
-        (0..self.coords.len()).map(|k| self.body_of(k)).collect()
     }
 }
 

@@ -507,28 +507,6 @@ fn row_forms(model: &Model, ws: &Work) -> Vec<[[f64; 6]; 2]> {
 fn joint_rows(model: &Model, ws: &Work, forms: &[[[f64; 6]; 2]], xi: &[f64], out: &mut [f64]) {
     let zero = [Vec3::zeros(); 4];
     let of = |x: &[f64], b: Option<usize>| b.map_or(zero, |b| body_nodes(x, b));
-    // (δ₀, Δδ) of body b as nodes
-    let tangents = |b: Option<usize>| -> ([Vec3; 4], [Vec3; 4]) {
-        let Some(b) = b else {
-            return (zero, zero);
-        };
-        let (n0, inc) = (body_nodes(&ws.qn, b), body_nodes(&ws.dq, b));
-        let (dphi, dth) = (read3(xi, 6 * b), read3(xi, 6 * b + 3));
-        (
-            [
-                dphi,
-                dth.cross(&n0[1]),
-                dth.cross(&n0[2]),
-                dth.cross(&n0[3]),
-            ],
-            [
-                Vec3::zeros(),
-                dth.cross(&inc[1]),
-                dth.cross(&inc[2]),
-                dth.cross(&inc[3]),
-            ],
-        )
-    };
     // the joint rows by their forms on the twists (`row_forms`)
     for jt in &model.joints {
         let xb = &xi[6 * jt.child..6 * jt.child + 6];
@@ -546,18 +524,8 @@ fn joint_rows(model: &Model, ws: &Work, forms: &[[[f64; 6]; 2]], xi: &[f64], out
         for (j, w) in [(cp.b, 1.0), (cp.a, -cp.ratio)] {
             let jt = &model.joints[j];
             let (a, b) = (jt.parent, Some(jt.child));
-            let ((d0a, _), (d0b, _)) = (tangents(a), tangents(b));
-            let end = |b: Option<usize>| -> [Vec3; 4] {
-                let Some(b) = b else { return zero };
-                let (n1, th) = (body_nodes(&ws.q, b), read3(xi, 6 * b + 3));
-                [
-                    read3(xi, 6 * b),
-                    th.cross(&n1[1]),
-                    th.cross(&n1[2]),
-                    th.cross(&n1[3]),
-                ]
-            };
-            let (d1a, d1b) = (end(a), end(b));
+            let (d0a, d0b) = (perturbation(&ws.qn, xi, a), perturbation(&ws.qn, xi, b));
+            let (d1a, d1b) = (perturbation(&ws.q, xi, a), perturbation(&ws.q, xi, b));
             let rate = |qa: &[Vec3; 4], qb: &[Vec3; 4], da: &[Vec3; 4], db: &[Vec3; 4]| {
                 coordinate_rate(&jt.dofs[0], qa, qb, da, db)
             };
