@@ -2,6 +2,8 @@
 //! double pendulum, heavy top, chainN as in `shared/peers/models/*.json`).
 #![allow(dead_code)]
 
+pub mod contact_models;
+pub mod step_diff;
 pub mod trees;
 
 use triad::math::{exp_so3, Mat3, Vec3};

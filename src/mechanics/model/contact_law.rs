@@ -39,43 +39,54 @@
 //! Newton converges through the switch, and friction never does positive work over a step.
 
 use super::one_sided::gradient;
+use super::scalar::{c, Real};
 #[cfg(test)]
-use crate::math::Mat3;
-use crate::math::Vec3;
+use crate::math::{Mat3, Vec3};
+use nalgebra::Vector3;
 
-/// The normal force of a contact point over a step.
+/// The normal force of a contact point over a step, in `f64` or a dual number (the step's
+/// tangent, `step::contact_tangent`).
 #[derive(Clone, Copy, Debug, Default, PartialEq)]
-pub(crate) struct Normal {
+pub(crate) struct Normal<T = f64> {
     /// Force pushing the two sides apart, `f ≥ 0`, N.
-    pub force: f64,
+    pub force: T,
     /// `∂f/∂x₁` (N/m), for the Jacobian.
-    pub dforce: f64,
+    pub dforce: T,
     /// The elastic part `e = ΔV/Δx`, N.
-    pub elastic: f64,
+    pub elastic: T,
     /// The mean penetration `p̄`, m.
-    pub mean: f64,
+    pub mean: T,
 }
 
 /// `ψ(z)` and `ψ'(z)` (module formulas).
-fn psi(z: f64) -> (f64, f64) {
-    if z >= -0.5 {
-        (z, 1.0)
+fn psi<T: Real>(z: T) -> (T, T) {
+    if z >= c(-0.5) {
+        (z, T::one())
     } else {
-        let t = 0.5 * (2.0 * z + 1.0).exp();
-        (t - 1.0, 2.0 * t)
+        let t = (z * c(2.0) + T::one()).exp() * c(0.5);
+        (t - T::one(), t * c(2.0))
+    }
+}
+
+/// `max(x, 0)`.
+fn positive<T: Real>(x: T) -> T {
+    if x > T::zero() {
+        x
+    } else {
+        T::zero()
     }
 }
 
 /// The normal force over a step of size `h` from penetration `x0` to `x1` (module formulas).
 #[must_use]
-pub(crate) fn normal(k: f64, d: f64, x0: f64, x1: f64, h: f64) -> Normal {
+pub(crate) fn normal<T: Real>(k: f64, d: f64, x0: T, x1: T, h: f64) -> Normal<T> {
     let (e, de) = gradient(k, x0, x1);
-    let mean = 0.5 * (x0.max(0.0) + x1.max(0.0));
+    let mean = (positive(x0) + positive(x1)) * c(0.5);
     let dx = x1 - x0;
-    let (p, dp) = psi(d * dx / h);
+    let (p, dp) = psi(dx * c(d) / c(h));
     Normal {
-        force: e * (1.0 + p),
-        dforce: de * (1.0 + p) + e * dp * d / h,
+        force: e * (T::one() + p),
+        dforce: de * (T::one() + p) + e * dp * c(d) / c(h),
         elastic: e,
         mean,
     }
@@ -85,77 +96,88 @@ pub(crate) fn normal(k: f64, d: f64, x0: f64, x1: f64, h: f64) -> Normal {
 pub(crate) const YIELD: f64 = 0.9;
 
 /// `σ(r)` and `σ'(r)` (module formulas).
-fn sigma(r: f64) -> (f64, f64) {
-    if r <= YIELD {
-        (r, 1.0)
+fn sigma<T: Real>(r: T) -> (T, T) {
+    if r <= c(YIELD) {
+        (r, T::one())
     } else {
         let w = 1.0 - YIELD;
-        let t = (-(r - YIELD) / w).exp();
-        (1.0 - w * t, t)
+        let t = (-(r - c(YIELD)) / c(w)).exp();
+        (T::one() - t * c(w), t)
     }
 }
 
-/// The friction force of a contact point over a step.
+/// The friction force of a contact point over a step, in `f64` or a dual number.
 #[derive(Clone, Copy, Debug, PartialEq)]
-pub(crate) struct Friction {
+pub(crate) struct Friction<T: Real = f64> {
     /// Tangential force on the side that moved by `u`, N.
-    pub force: Vec3,
+    pub force: Vector3<T>,
     /// Bristle deflection at the step's end, m.
-    pub s1: Vec3,
+    pub s1: Vector3<T>,
     /// Energy dissipated `D_t ≥ 0`, J.
-    pub loss: f64,
+    pub loss: T,
     /// `∂F/∂u = −stiff P_t − radial t̂ t̂ᵀ` (N/m) with `t̂ = dir`.
-    pub stiff: f64,
+    pub stiff: T,
     /// See `stiff`.
-    pub radial: f64,
+    pub radial: T,
     /// The direction of the trial force `F*` (zero without one).
-    pub dir: Vec3,
+    pub dir: Vector3<T>,
     /// `∂F/∂C`, the force's change with the cone.
-    pub dcap: Vec3,
+    pub dcap: Vector3<T>,
     /// `∂F/∂c_t`, the force's change with the damper (which follows the penetration).
-    pub dct: Vec3,
+    pub dct: Vector3<T>,
 }
 
 /// The friction force over a step of size `h` (module formulas): bristle stiffness `kt`,
 /// damper `ct` (N·s/m), cone `cap = μ f` (N), deflection `s0` at the step's start and the
 /// tangential displacement `u` of the contact point.
 #[must_use]
-pub(crate) fn friction(kt: f64, ct: f64, cap: f64, s0: Vec3, u: Vec3, h: f64) -> Friction {
-    if cap.is_nan() || cap <= 0.0 || kt <= 0.0 {
+pub(crate) fn friction<T: Real>(
+    kt: f64,
+    ct: T,
+    cap: T,
+    s0: Vector3<T>,
+    u: Vector3<T>,
+    h: f64,
+) -> Friction<T> {
+    let zero = T::zero();
+    #[allow(clippy::eq_op)] // NaN test
+    if cap != cap || cap <= zero || kt <= 0.0 {
         return Friction {
-            force: Vec3::zeros(),
-            s1: Vec3::zeros(),
-            loss: 0.5 * kt.max(0.0) * s0.norm_squared(),
-            stiff: 0.0,
-            radial: 0.0,
-            dir: Vec3::zeros(),
-            dcap: Vec3::zeros(),
-            dct: Vec3::zeros(),
+            force: Vector3::zeros(),
+            s1: Vector3::zeros(),
+            loss: s0.norm_squared() * c(0.5 * kt.max(0.0)),
+            stiff: zero,
+            radial: zero,
+            dir: Vector3::zeros(),
+            dcap: Vector3::zeros(),
+            dct: Vector3::zeros(),
         };
     }
-    let star = s0 + u * 0.5;
-    let trial = -star * kt - u * (ct / h);
-    let size = trial.norm();
+    let (kt_, h_) = (c::<T>(kt), c::<T>(h));
+    let star = s0 + u * c::<T>(0.5);
+    let trial = -star * kt_ - u * (ct / h_);
+    let size = trial.norm_squared().sqrt();
     let r = size / cap;
     let (sig, dsig) = sigma(r);
-    let (lam, dlam) = if r > YIELD {
+    let (lam, dlam) = if r > c(YIELD) {
         (sig / r, (dsig * r - sig) / (r * r))
     } else {
-        (1.0, 0.0)
+        (T::one(), zero)
     };
-    let a = 0.5 * kt + ct / h;
-    let dir = if size > 0.0 {
+    let a = kt_ * c(0.5) + ct / h_;
+    let dir = if size > zero {
         trial / size
     } else {
-        Vec3::zeros()
+        Vector3::zeros()
     };
     // ∂trial/∂c_t = −u/h, ∂r/∂c_t = t̂·(−u/h)/C
-    let dtrial = -u / h;
+    let dtrial = -u / h_;
     let dct = dtrial * lam + trial * (dlam * dir.dot(&dtrial) / cap);
     Friction {
         force: trial * lam,
-        s1: star * (2.0 * lam) - s0,
-        loss: 2.0 * kt * lam * (1.0 - lam) * star.norm_squared() + lam * ct * u.norm_squared() / h,
+        s1: star * (lam * c::<T>(2.0)) - s0,
+        loss: kt_ * c(2.0) * lam * (T::one() - lam) * star.norm_squared()
+            + lam * ct * u.norm_squared() / h_,
         stiff: a * lam,
         radial: a * r * dlam,
         dir,
@@ -194,7 +216,7 @@ mod tests {
     #[test]
     fn the_normal_derivative_matches_differences() {
         let (k, d, h) = (1e5, 2.0, 1e-3);
-        for &(x0, x1) in &[(-0.002, 0.001), (0.001, 0.0015), (0.0015, 0.0004)] {
+        for &(x0, x1) in &[(-0.002_f64, 0.001_f64), (0.001, 0.0015), (0.0015, 0.0004)] {
             let e = 1e-9;
             let fd =
                 (normal(k, d, x0, x1 + e, h).force - normal(k, d, x0, x1 - e, h).force) / (2.0 * e);

@@ -14,6 +14,8 @@
 //! Nothing divides by a small increment: a quotient appears only when the step crosses
 //! `x = 0`, and then `|x₁ − x₀| ≥ |x₁|, |x₀|`. `e` is continuous in `x₁`.
 
+use super::scalar::{c, Real};
+
 /// Stored energy `½k⟨x⟩²` of a penetration `x` (J for `k` in N/m and `x` in m, or N·m/rad and
 /// rad).
 #[must_use]
@@ -22,22 +24,21 @@ pub(crate) fn energy(k: f64, x: f64) -> f64 {
     0.5 * k * p * p
 }
 
-/// The discrete gradient `e` of `½k⟨x⟩²` from `x0` to `x1` and `∂e/∂x₁` (module formulas).
+/// The discrete gradient `e` of `½k⟨x⟩²` from `x0` to `x1` and `∂e/∂x₁` (module formulas), in
+/// `f64` or a dual number.
 #[must_use]
-pub(crate) fn gradient(k: f64, x0: f64, x1: f64) -> (f64, f64) {
-    match (x0 > 0.0, x1 > 0.0) {
-        (false, false) => (0.0, 0.0),
-        (true, true) => (0.5 * k * (x0 + x1), 0.5 * k),
+pub(crate) fn gradient<T: Real>(k: f64, x0: T, x1: T) -> (T, T) {
+    let (zero, hk) = (T::zero(), c::<T>(0.5 * k));
+    match (x0 > zero, x1 > zero) {
+        (false, false) => (zero, zero),
+        (true, true) => (hk * (x0 + x1), hk),
         (false, true) => {
             let d = x1 - x0;
-            (
-                0.5 * k * x1 * x1 / d,
-                0.5 * k * x1 * (x1 - 2.0 * x0) / (d * d),
-            )
+            (hk * x1 * x1 / d, hk * x1 * (x1 - x0 * c(2.0)) / (d * d))
         }
         (true, false) => {
             let d = x0 - x1;
-            (0.5 * k * x0 * x0 / d, 0.5 * k * x0 * x0 / (d * d))
+            (hk * x0 * x0 / d, hk * x0 * x0 / (d * d))
         }
     }
 }

@@ -40,6 +40,8 @@ use nalgebra::Vector3;
 /// A ground point touching at the operating point.
 #[derive(Clone, Debug)]
 pub(super) struct Touch {
+    /// Its index among the ground points (`GroundRt::points`).
+    pub(super) ground: usize,
     /// The shape's name and the point's index among the shape's points (0-based).
     pub(super) shape: String,
     /// Its index among the collision shapes.
@@ -122,6 +124,23 @@ impl Sticking {
     /// Moves the operating point's bristles to `sigma` (len [`Sticking::n`]).
     pub fn set_sigma0(&mut self, sigma: &[f64]) {
         self.sigma0.copy_from_slice(sigma);
+    }
+
+    /// The contact bristles' states in `σ` order: the ground point (`GroundRt::points`) and
+    /// the tangent axis its component lies along (world, unit).
+    #[must_use]
+    pub fn contact_axes(&self) -> Vec<(usize, Vec3)> {
+        self.touches
+            .iter()
+            .filter(|t| t.at.is_some())
+            .flat_map(|t| self.tangents.iter().map(move |a| (t.ground, *a)))
+            .collect()
+    }
+
+    /// The ground points (`GroundRt::points`) that touch, with friction or without.
+    #[must_use]
+    pub fn touching(&self) -> Vec<usize> {
+        self.touches.iter().map(|t| t.ground).collect()
     }
 
     /// The names of `σ`: `contact.C.s[i]` (a shape with one point) or `contact.C.s[k,i]` (point

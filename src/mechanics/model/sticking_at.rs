@@ -66,6 +66,7 @@ impl Sticking {
                     out.sigma0.extend(out.tangents.iter().map(|t| t.dot(&s)));
                 }
                 out.touches.push(Touch {
+                    ground: k,
                     shape: def.contact.shapes[p.shape].name.clone(),
                     shape_index: p.shape,
                     point,

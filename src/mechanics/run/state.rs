@@ -175,6 +175,12 @@ impl State {
         &self.bristle
     }
 
+    /// The contact friction bristles' deflections, mutable (a state perturbed along its
+    /// bristle states, restoring snapshots); as [`State::contact_bristles`].
+    pub fn contact_bristles_mut(&mut self) -> &mut [f64] {
+        &mut self.bristle
+    }
+
     /// The joint friction bristles' deflections (one per coordinate with friction), rad or m.
     #[must_use]
     pub fn joint_bristles(&self) -> &[f64] {

@@ -8,7 +8,12 @@
 //! [Ad Bd] = ∂x(t+h)/∂(x(t), u) = read-off tangent at the end × the columns
 //! closed loops: x = (q_I, ν_I); the embedding's columns × ∂(q, ν)/∂x (2k), the read-off's
 //!   rows of I (`model::minimal`, `model::loop_linear`), the same I at both ends
+//! ground contact: x = (q, ν, σ) as for A, B (`model::sticking`): a bristle state σ's column
+//!   moves its point's bristle along its axis t (δs = t), its row reads t·δs at the end;
+//!   the same points must touch at both ends (else refused by name)
 //! ```
+//!
+//! Joint friction is refused (its bristle's share of the tangent is not derived yet).
 
 use super::operating::Operating;
 use super::state::State;
@@ -16,14 +21,15 @@ use crate::mechanics::model::loop_closure::Independent;
 use crate::mechanics::model::minimal::NodalColumns;
 use crate::mechanics::model::runtime::Model;
 use crate::mechanics::step::tangent::Tangent;
+use crate::mechanics::step::tangent_state::ground_points;
 use nalgebra::DMatrix;
 
 /// The discrete-time linear model of one communication step `δx(t+h) = Ad δx(t) + Bd δu`.
 #[derive(Clone, Debug)]
 pub struct StepMap {
-    /// `∂x(t+h)/∂x(t)`, 2n × 2n (closed loops: 2k × 2k).
+    /// `∂x(t+h)/∂x(t)`, 2n + s × 2n + s (`s` contact bristle states; closed loops: 2k × 2k).
     pub ad: DMatrix<f64>,
-    /// `∂x(t+h)/∂u`, 2n × (every input of the model, in `Model::inputs` order).
+    /// `∂x(t+h)/∂u`, 2n + s × (every input of the model, in `Model::inputs` order).
     pub bd: DMatrix<f64>,
     /// `x(t+h)` (the rotation-vector coordinates 0: about the end's own orientations).
     pub x1: Vec<f64>,
@@ -34,24 +40,25 @@ pub struct StepMap {
 /// the end ([`Independent::Coords`] of those picked).
 ///
 /// # Errors
-/// Why the model has no minimal coordinates (contact, friction), or a pick that
-/// is not independent here.
+/// Why the model has no minimal coordinates here (joint friction, a sliding contact, contact
+/// with closed loops), or a pick that is not independent here.
 pub fn begin_step_map(
     model: &Model,
     state: &mut State,
     pick: &Independent,
 ) -> Result<Independent, String> {
-    if !model.contact.is_empty() || model.nfric > 0 {
+    if model.nfric > 0 {
         return Err(
-            "the step's tangent map does not cover contact and joint friction yet (A, B, C, D do)"
-                .into(),
+            "the step's tangent map does not cover joint friction yet (A, B, C, D do)".into(),
         );
     }
     let op = Operating::picked(model, state, pick).map_err(|e| e.to_string())?;
-    let (n, m) = (op.x().len() / 2, model.inputs.len());
+    let axes = op.dynamics.sticking().contact_axes();
+    let ns = axes.len();
+    let (n, m) = ((op.x().len() - ns) / 2, model.inputs.len());
     let nb = model.bodies.len();
-    // the inputs' columns follow the embedding's in the same buffers (trees)
-    let spare = if op.loops.is_none() { m } else { 0 };
+    // the bristles' and the inputs' columns follow the embedding's in the same buffers (trees)
+    let spare = if op.loops.is_none() { ns + m } else { 0 };
     let mut emb = op.dynamics.embed_tangent_spare(&op.q, &op.nu, spare);
     // the rotors' rates are their joints' rates: per tree column, the rotor of coordinate k
     // moves with the rate column of k
@@ -75,14 +82,21 @@ pub fn begin_step_map(
         }
         None => (Independent::Auto, dw_tree),
     };
-    let cols = 2 * n + m;
+    let cols = 2 * n + ns + m;
     let mut xi = emb.xi;
     xi.resize(6 * nb * cols, 0.0);
     let mut dv = emb.dv;
     dv.resize(12 * nb * cols, 0.0);
     let mut du = vec![0.0; m * cols];
     for i in 0..m {
-        du[(2 * n + i) * m + i] = 1.0;
+        du[(2 * n + ns + i) * m + i] = 1.0;
+    }
+    // a bristle state σ moves its point's bristle along its axis
+    let ng = ground_points(model);
+    let mut ds = vec![0.0; 3 * ng * cols];
+    for (j, (k, axis)) in axes.iter().enumerate() {
+        let at = (2 * n + j) * 3 * ng + 3 * k;
+        ds[at..at + 3].copy_from_slice(axis.as_slice());
     }
     let mut dw = vec![0.0; na * cols];
     for c in 0..2 * n {
@@ -90,7 +104,9 @@ pub fn begin_step_map(
             dw[c * na + r] = dw_x[(r, c)];
         }
     }
-    state.ws.tangent = Some(Box::new(Tangent::new(model, cols, (xi, dv), du, dw)));
+    let mut tangent = Tangent::new(model, cols, (xi, dv), du, (dw, ds));
+    tangent.touching = op.dynamics.sticking().touching();
+    state.ws.tangent = Some(Box::new(tangent));
     Ok(end)
 }
 
@@ -98,7 +114,8 @@ pub fn begin_step_map(
 /// loops in the coordinates `pick` (those [`begin_step_map`] returned).
 ///
 /// # Errors
-/// No tangent was carried, no minimal coordinates, or a singular mass matrix.
+/// No tangent was carried, no minimal coordinates, a singular mass matrix, two bodies' shapes
+/// touched during the step, or the touching ground points changed.
 pub fn finish_step_map(
     model: &Model,
     state: &mut State,
@@ -109,11 +126,45 @@ pub fn finish_step_map(
         .tangent
         .take()
         .ok_or("no step tangent was carried")?;
+    if let Some(why) = &tangent.inexact {
+        return Err(format!(
+            "{why} during the step: the step's tangent map covers ground contact only"
+        ));
+    }
     let end = Operating::picked(model, state, pick).map_err(|e| e.to_string())?;
+    let axes = end.dynamics.sticking().contact_axes();
+    let touching = end.dynamics.sticking().touching();
+    if touching != tangent.touching {
+        let shapes = &model.def().contact.shapes;
+        let names = |s: &[usize]| {
+            let mut v: Vec<&str> = model.contact.ground.as_ref().map_or(Vec::new(), |g| {
+                s.iter()
+                    .map(|k| shapes[g.points[*k].shape].name.as_str())
+                    .collect()
+            });
+            v.dedup();
+            if v.is_empty() {
+                "none".to_string()
+            } else {
+                v.join(", ")
+            }
+        };
+        return Err(format!(
+            "the ground points that touch change over the step (shapes touching at its start: \
+             {}; at its end: {}): Ad, Bd would have different bristle states at its two ends; \
+             take a shorter --step or a point where the contacts stay",
+            names(&tangent.touching),
+            names(&touching)
+        ));
+    }
     let x1 = end.x();
-    let n = x1.len() / 2;
+    let ns = axes.len();
+    let n = (x1.len() - ns) / 2;
     // the columns are stored as the read-off takes them (column-major)
-    let Tangent { cols, xi, dv, .. } = *tangent;
+    let Tangent {
+        cols, xi, dv, ds, ..
+    } = *tangent;
+    let ng = ground_points(model);
     let nodal = NodalColumns { cols, xi, dv };
     let dx =
         end.dynamics
@@ -131,9 +182,19 @@ pub fn finish_step_map(
         }
         None => dx,
     };
+    // the bristle states' rows: each state's axis on its point's bristle column
+    let mut full = DMatrix::zeros(2 * n + ns, cols);
+    full.rows_mut(0, 2 * n).copy_from(&dx);
+    for (j, (k, axis)) in axes.iter().enumerate() {
+        for c in 0..cols {
+            let at = c * 3 * ng + 3 * k;
+            full[(2 * n + j, c)] = axis.dot(&crate::math::Vec3::from_column_slice(&ds[at..at + 3]));
+        }
+    }
+    let nx = 2 * n + ns;
     Ok(StepMap {
-        ad: dx.columns(0, 2 * n).into_owned(),
-        bd: dx.columns(2 * n, cols - 2 * n).into_owned(),
+        ad: full.columns(0, nx).into_owned(),
+        bd: full.columns(nx, cols - nx).into_owned(),
         x1,
     })
 }

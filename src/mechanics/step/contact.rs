@@ -19,28 +19,31 @@
 // index loops over coupled fixed-size arrays read closer to the formulas than iterator chains
 #![allow(clippy::needless_range_loop)]
 
+use super::contact_tangent::{exact_blocks, ContactJacobian};
 use super::work::Work;
 use crate::math::{skew, Mat3, Vec3};
-use crate::mechanics::model::constraint::{body_nodes, read3, write3, Nodes};
+use crate::mechanics::model::constraint::{body_nodes, read3, write3};
 use crate::mechanics::model::contact::{material_point, pair_nodes, Feature, GroundPoint};
 use crate::mechanics::model::contact_law::{friction, normal, Friction, Normal};
 use crate::mechanics::model::kernels::project;
 use crate::mechanics::model::runtime::Model;
+use crate::mechanics::model::scalar::{c, cv, Real};
+use nalgebra::{Matrix3, Vector3};
 
 /// `Σᵢ wᵢ dᵢ` over the directors of `q` (a body-axes vector in world axes).
-fn world(q: &Nodes, w: &Vec3) -> Vec3 {
+pub(super) fn world<T: Real>(q: &[Vector3<T>; 4], w: &Vector3<T>) -> Vector3<T> {
     q[1] * w.x + q[2] * w.y + q[3] * w.z
 }
 
-/// One ground point's step quantities.
-struct GroundStep {
-    normal: Normal,
-    friction: Friction,
+/// One ground point's step quantities, in `f64` or a dual number (`contact_tangent`).
+pub(super) struct GroundStep<T: Real = f64> {
+    pub(super) normal: Normal<T>,
+    pub(super) friction: Friction<T>,
     /// The contact point, body axes relative to the centre of mass.
-    xc: Vec3,
+    pub(super) xc: Vector3<T>,
     /// Penetrations at the stage's start and end.
-    x0: f64,
-    x1: f64,
+    pub(super) x0: T,
+    pub(super) x1: T,
 }
 
 /// The laws of ground point `p` (bristle `s0`) over the stage `ws.qn → ws.q` of size `h`.
@@ -58,19 +61,33 @@ fn ground_step(
         body_nodes(&ws.dq, b),
         body_nodes(&ws.qbar, b),
     );
-    let n = *normal_dir;
-    let g0 = n.dot(&(q0[0] + world(&q0, &p.x))) - height - p.radius;
-    let dx = dq[0] + world(&dq, &p.x);
+    ground_law(p, normal_dir, height, [&q0, &dq, &qbar], s0, h)
+}
+
+/// The laws of ground point `p` (bristle `s0`) over a stage of size `h` from the body's nodes
+/// `q0` by the increment `dq`, midpoint `qbar` (module formulas).
+pub(super) fn ground_law<T: Real>(
+    p: &GroundPoint,
+    normal_dir: &Vec3,
+    height: f64,
+    [q0, dq, qbar]: [&[Vector3<T>; 4]; 3],
+    s0: Vector3<T>,
+    h: f64,
+) -> GroundStep<T> {
+    let n = cv::<T>(normal_dir);
+    let x = cv::<T>(&p.x);
+    let g0 = n.dot(&(q0[0] + world(q0, &x))) - c(height) - c(p.radius);
+    let dx = dq[0] + world(dq, &x);
     let (x0, x1) = (-g0, -(g0 + n.dot(&dx)));
     let law = p.law;
     let nrm = normal(law.stiffness, law.damping, x0, x1, h);
     // the contact point X − r D̄ᵀn, fixed in the body over the stage
-    let dbar = Mat3::from_columns(&[qbar[1], qbar[2], qbar[3]]);
-    let xc = p.x - dbar.transpose() * n * p.radius;
-    let dxc = dq[0] + world(&dq, &xc);
+    let dbar = Matrix3::from_columns(&[qbar[1], qbar[2], qbar[3]]);
+    let xc = x - dbar.transpose() * n * c::<T>(p.radius);
+    let dxc = dq[0] + world(dq, &xc);
     let u = dxc - n * n.dot(&dxc);
-    let ct = law.stiffness * law.damping * nrm.mean;
-    let fr = friction(law.stiffness, ct, law.friction * nrm.force, s0, u, h);
+    let ct = nrm.mean * c(law.stiffness * law.damping);
+    let fr = friction(law.stiffness, ct, nrm.force * c(law.friction), s0, u, h);
     GroundStep {
         normal: nrm,
         friction: fr,
@@ -133,7 +150,11 @@ fn tangent_matrix(n: &Vec3, fr: &Friction) -> Mat3 {
 /// `ws.rn` and, if `jac`, the bodies' diagonal blocks `ws.xbody`.
 pub(crate) fn contact_forces(model: &Model, ws: &mut Work, h: f64, jac: bool) {
     let hh = 0.5 * h * h;
+    let exact = jac && ws.contact_jacobian == ContactJacobian::Exact;
     if let Some(g) = &model.contact.ground {
+        if exact {
+            exact_blocks(g, ws, h);
+        }
         for (k, p) in g.points.iter().enumerate() {
             let s0 = read3(&ws.bristle, 3 * k);
             let st = ground_step(p, &g.normal, g.height, ws, s0, h);
@@ -143,7 +164,7 @@ pub(crate) fn contact_forces(model: &Model, ws: &mut Work, h: f64, jac: bool) {
             let b = p.body;
             push_force(&mut ws.rn, b, &p.x, &(g.normal * st.normal.force), hh);
             push_force(&mut ws.rn, b, &st.xc, &st.friction.force, hh);
-            if jac {
+            if jac && !exact {
                 let (qbar, q) = (body_nodes(&ws.qbar, b), body_nodes(&ws.q, b));
                 let (rbar, r) = (world(&qbar, &p.x), world(&q, &p.x));
                 let (rcbar, rc) = (world(&qbar, &st.xc), world(&q, &st.xc));
@@ -203,6 +224,27 @@ pub(crate) fn contact_forces(model: &Model, ws: &mut Work, h: f64, jac: bool) {
             }
         }
     }
+}
+
+/// The first body–body feature that touches or holds a loaded bristle over the stage in `ws`,
+/// named (`None`: none does).
+pub(crate) fn touching_features(model: &Model, ws: &Work, h: f64) -> Option<String> {
+    let off = model.contact.ground.as_ref().map_or(0, |g| g.points.len());
+    let shapes = &model.def().contact.shapes;
+    model
+        .contact
+        .features
+        .iter()
+        .enumerate()
+        .find_map(|(k, f)| {
+            let s0 = read3(&ws.bristle, 3 * (off + k));
+            feature_step(f, ws, s0, h).map(|_| {
+                format!(
+                    "the shapes {} and {} touch each other",
+                    shapes[f.shapes.0].name, shapes[f.shapes.1].name
+                )
+            })
+        })
 }
 
 /// `rn[body] += s·grad` (4 node vectors).

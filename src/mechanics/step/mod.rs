@@ -13,7 +13,8 @@
 //!   account, unwrapped angles), `momentum` (bodies in contact: the momenta exact at any
 //!   tolerance), `identity` (the spurious roots a converged stage is refused for),
 //!   `stage` (a robust stage, the order-4 composition), `tangent` (the step's exact tangent map,
-//!   carried through a run; its columns in `tangent_state`), `error`.
+//!   carried through a run; its columns in `tangent_state`, the ground contact's share in
+//!   `contact_tangent`), `error`.
 //!
 //! Uses: `model`, `linalg` and `crate::math`; never `run`.
 
@@ -21,6 +22,7 @@ pub(crate) mod body_terms;
 #[cfg(test)]
 mod border_tests;
 pub(crate) mod contact;
+pub(crate) mod contact_tangent;
 pub(crate) mod coupling;
 pub(crate) mod error;
 pub(crate) mod finish;

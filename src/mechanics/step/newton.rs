@@ -27,6 +27,7 @@
 
 use super::body_terms::project_bodies;
 use super::contact::contact_forces;
+use super::contact_tangent::ContactJacobian;
 pub(crate) use super::increment::{resolve, solve, update};
 pub(crate) use super::joint_loads::apply_joint;
 use super::joint_loads::{joint_loads, loaded, Acc, Pair};
@@ -63,7 +64,7 @@ pub(crate) fn evaluate(model: &Model, ws: &mut Work, held: &Held, h: f64, mode: 
         }
     }
     inertia_and_forces(model, ws, held, h, jac);
-    if !model.contact.is_empty() {
+    if !model.contact.is_empty() && ws.contact_jacobian != ContactJacobian::Off {
         contact_forces(model, ws, h, jac);
     }
     // joint rows: μ ∇g(q̄) into R̃, g(q) residual, Jacobian columns/rows and node couplings

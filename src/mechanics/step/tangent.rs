@@ -44,13 +44,18 @@
 //! torques: two groups), and per column one product with the two Jacobians' summed body rows
 //! and one back-substitution (four columns at a time, `linalg::tree::lanes`), each O(N) on a
 //! tree.
-//! Contacts and joint friction are not covered (`run::step_map` refuses them before a tangent
-//! exists). Loop-closing joints are: their rows' right-hand sides go to the border of the
+//! Ground contact: its exact block replaces Newton's in the matrix at the root, the swapped
+//! evaluations leave it out, and each column adds its share with both ends and the bristles
+//! moved, then carries the bristles to the end (`contact_tangent`). Body–body contact marks
+//! the tangent inexact; joint friction is not covered (`run::step_map` refuses it before a
+//! tangent exists). Loop-closing joints are: their rows' right-hand sides go to the border of the
 //! bordered solve and its off-tree couplings `X` join the products with the assembled matrix
 //! (`linalg::border`).
 // index loops over coupled fixed-size arrays read closer to the formulas than iterator chains
 #![allow(clippy::needless_range_loop)]
 
+use super::contact::touching_features;
+use super::contact_tangent::{bristle_column, column_share, ContactJacobian};
 use super::error::StepError;
 use super::increment::coupling_entry;
 use super::joint_loads::Pair;
@@ -83,6 +88,7 @@ impl Tangent {
         self.keep_start();
         // the Newton matrix at the root, with the root's multipliers
         let mut wt = ws.clone();
+        wt.contact_jacobian = ContactJacobian::Exact;
         evaluate(model, &mut wt, held, h, Mode::Full);
         if !solve(model, &mut wt) {
             return Err(StepError::Singular);
@@ -103,10 +109,12 @@ impl Tangent {
         let mut wz = ws.clone();
         wz.mu.copy_from_slice(&wt.mu);
         wz.inertia_in_jacobian = false;
+        wz.contact_jacobian = ContactJacobian::Off;
         evaluate(model, &mut wz, held, h, Mode::Full);
         let mut sw = ws.clone();
         sw.mu.copy_from_slice(&wt.mu);
         sw.inertia_in_jacobian = false;
+        sw.contact_jacobian = ContactJacobian::Off;
         let two_over_h = 2.0 / h;
         for i in 0..12 * nb {
             let v1 = ws.vn[i] + ws.vlo[i] + wt.acc[i] * two_over_h;
@@ -135,6 +143,12 @@ impl Tangent {
         let mirror = self.mirror.as_deref().unwrap_or(model);
         evaluate(mirror, &mut sw, &held_sw, h, Mode::Full);
         let ru = self.input_columns(model, ws, &wt.mu, held, h);
+        if self.inexact.is_none() {
+            self.inexact = touching_features(model, ws, h);
+        }
+        let ground = model.contact.ground.as_ref();
+        let ng = ground.map_or(0, |g| g.points.len());
+        let mut xi_end = vec![0.0; 6 * nb];
         let rotors = rotors(model, ws);
         let na = model.narm;
         // per column: the right-hand side, one solve, the end's perturbation
@@ -213,6 +227,13 @@ impl Tangent {
                         }
                     }
                 }
+                // the ground contact's share, both ends and the bristles moved (`contact_tangent`)
+                if let Some(g) = ground {
+                    let ds = &self.ds[c * 3 * ng..(c + 1) * 3 * ng];
+                    if xi.iter().chain(ds).any(|&x| x != 0.0) {
+                        column_share(g, ws, xi, ds, h, y);
+                    }
+                }
                 // the rotors: ∂r/∂ω₀ δω₀ = −a h P̄ᵀD δω₀, and the swapped evaluation's share of
                 // the rotor load taken with the sign of an inertia (module docs): −2a ṫₙ(ξ) P̄ᵀD
                 for (r, ro) in rotors.iter().enumerate() {
@@ -273,6 +294,18 @@ impl Tangent {
                     for (b, sb) in sol.iter_mut().enumerate() {
                         *sb = std::array::from_fn(|k| rhs_entry(model, &wt, b, k));
                     }
+                }
+                // the bristles at the end: along ξ at the start, ξ + Y at the end
+                if let Some(g) = ground {
+                    let xi = &self.xi[c * 6 * nb..(c + 1) * 6 * nb];
+                    for (b, sb) in sol.iter().enumerate() {
+                        for k in 0..6 {
+                            xi_end[6 * b + k] = xi[6 * b + k] + sb[k];
+                        }
+                    }
+                    let ds = &mut self.ds[c * 3 * ng..(c + 1) * 3 * ng];
+                    let ds0 = ds.to_vec();
+                    bristle_column(g, ws, [xi, &xi_end], &ds0, h, ds);
                 }
                 // δa = Q_{n+1} Y + (Q_{n+1} − Qₙ) ξ − h δv,  δv_{n+1} = δv + (2/h) δa
                 let dvc = &mut self.dv[c * 12 * nb..(c + 1) * 12 * nb];

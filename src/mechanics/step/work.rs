@@ -1,5 +1,6 @@
 //! The preallocated Newton workspace of a step and the loads held over it.
 
+use super::contact_tangent::ContactJacobian;
 use super::reduced::work::RedWork;
 use super::tangent_state::Tangent;
 use crate::mechanics::linalg::border::Border;
@@ -179,6 +180,9 @@ pub(crate) struct Work {
     /// Whether a Jacobian pass assembles the inertia `M` into the body blocks (true; the
     /// tangent map assembles the other terms alone, `tangent`).
     pub inertia_in_jacobian: bool,
+    /// How a Jacobian pass takes the contact forces (Newton's blocks; the tangent map's
+    /// exact ones, or none).
+    pub contact_jacobian: ContactJacobian,
 }
 
 impl Work {
@@ -254,6 +258,7 @@ impl Work {
             red: RedWork::new(model),
             tangent: None,
             inertia_in_jacobian: true,
+            contact_jacobian: ContactJacobian::Newton,
         }
     }
 }
