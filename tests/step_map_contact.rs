@@ -1,8 +1,9 @@
-//! The discrete-time linear model with ground contact: the touching points' sticking bristles
-//! are states, `x = (q, ν, σ)` as for `A, B` (`sticking`). `Ad, Bd` agree with central
-//! differences of the step (the bristles perturbed along their axes) for a ball and a box
-//! resting on the ground, loaded and moving, in one step and in ten; a step in which the set
-//! of touching points changes is refused by name.
+//! The discrete-time linear model with ground contact and joint friction: the touching
+//! points' and the joints' sticking bristles are states, `x = (q, ν, σ)` as for `A, B`
+//! (`sticking`). `Ad, Bd` agree with central differences of the step (the bristles perturbed
+//! along their axes) for a ball and a box resting on the ground, loaded and moving, and an arm
+//! held by friction in a revolute and a prismatic joint, in one step and in ten; a step in
+//! which the set of touching points changes is refused by name.
 
 mod common;
 
@@ -12,12 +13,12 @@ use nalgebra::DMatrix;
 use triad::mechanics::{ModelDef, Operating, SolverSettings};
 use triad::sim::Simulation;
 
-/// A simulation at `x` (`op`'s coordinates) with inputs `u` and the contact bristles `base`,
-/// each bristle state of `x` moved along its axis from `op`'s.
+/// A simulation at `x` (`op`'s coordinates) with inputs `u` and the contact and joint
+/// bristles `base`, each bristle state of `x` moved (along its axis) from `op`'s.
 fn at(
     (def, settings): (&ModelDef, SolverSettings),
     op: &Operating,
-    base: &[f64],
+    base: (&[f64], &[f64]),
     x: &[f64],
     u: &[f64],
 ) -> Simulation {
@@ -25,20 +26,38 @@ fn at(
     sim.state_mut().inputs_mut().copy_from_slice(u);
     let axes = op.dynamics.sticking().contact_axes();
     let x0 = op.x();
-    let off = x0.len() - axes.len();
+    let off = 2 * op.dynamics.n();
+    let (contact, joints) = base;
     let br = sim.state_mut().contact_bristles_mut();
-    br.copy_from_slice(base);
+    br.copy_from_slice(contact);
     for (j, (k, t)) in axes.iter().enumerate() {
         for i in 0..3 {
             br[3 * k + i] += (x[off + j] - x0[off + j]) * t[i];
         }
     }
+    let off = off + axes.len();
+    let fr = sim.state_mut().joint_bristles_mut();
+    fr.copy_from_slice(joints);
+    for (j, i) in op
+        .dynamics
+        .sticking()
+        .joint_bristles()
+        .into_iter()
+        .enumerate()
+    {
+        fr[i] += x[off + j] - x0[off + j];
+    }
     sim
 }
 
 /// The model `text` loaded by `u` for `steps` steps of 1 ms: its definition, its operating
-/// point and its contact bristles there.
-fn loaded(text: &str, u: &[f64], steps: usize) -> (ModelDef, SolverSettings, Operating, Vec<f64>) {
+/// point and its contact and joint bristles there.
+#[allow(clippy::type_complexity)]
+fn loaded(
+    text: &str,
+    u: &[f64],
+    steps: usize,
+) -> (ModelDef, SolverSettings, Operating, (Vec<f64>, Vec<f64>)) {
     let (def, settings) = lower(text);
     let mut sim = Simulation::new(&def, settings, 0.0).unwrap();
     sim.state_mut().inputs_mut().copy_from_slice(u);
@@ -46,16 +65,19 @@ fn loaded(text: &str, u: &[f64], steps: usize) -> (ModelDef, SolverSettings, Ope
         sim.advance(1e-3).unwrap();
     }
     let op = sim.operating().unwrap();
-    (def, settings, op, sim.state().contact_bristles().to_vec())
+    let st = sim.state();
+    let base = (st.contact_bristles().to_vec(), st.joint_bristles().to_vec());
+    (def, settings, op, base)
 }
 
 /// `[Ad Bd]` of one communication step `h` from the loaded point, exact and by central
 /// differences with steps `ex` in x and `eu` in u.
 fn both(text: &str, u: &[f64], h: f64, (ex, eu): (f64, f64)) -> (DMatrix<f64>, DMatrix<f64>) {
     let (def, settings, op, base) = loaded(text, u, 20);
+    let base = (&base.0[..], &base.1[..]);
     let x0 = op.x();
     let ds = (&def, settings);
-    let mut sim = at(ds, &op, &base, &x0, u);
+    let mut sim = at(ds, &op, base, &x0, u);
     let map = sim.step_map(h).unwrap();
     let (nx, nu) = (x0.len(), u.len());
     assert_eq!(map.ad.shape(), (nx, nx));
@@ -69,7 +91,7 @@ fn both(text: &str, u: &[f64], h: f64, (ex, eu): (f64, f64)) -> (DMatrix<f64>, D
             } else {
                 uu[k - nx] += s;
             }
-            let mut sim = at(ds, &op, &base, &x, &uu);
+            let mut sim = at(ds, &op, base, &x, &uu);
             sim.advance(h).unwrap();
             sim.operating().unwrap()
         };
@@ -84,8 +106,44 @@ fn both(text: &str, u: &[f64], h: f64, (ex, eu): (f64, f64)) -> (DMatrix<f64>, D
     (exact, fd)
 }
 
+/// An arm on a revolute joint and a slider on it, held against gravity and small loads by
+/// their joints' friction (sticking, below 0.9 of the limits).
+const HELD: &str = r#"
+name = "Held"
+gravity = [0.0, 0.0, -9.81]
+[solver]
+max_step = 1e-3
+[[body]]
+name = "arm"
+mass = 1.0
+com = [0.2, 0.0, 0.0]
+inertia = [0.001, 0.01, 0.01]
+[[body]]
+name = "slider"
+mass = 0.5
+inertia = [0.001, 0.001, 0.001]
+[[joint]]
+name = "shoulder"
+type = "revolute"
+parent = "world"
+child = "arm"
+axis = [0.0, 1.0, 0.0]
+friction = 6.0
+damping = 0.05
+actuated = true
+[[joint]]
+name = "slide"
+type = "prismatic"
+parent = "arm"
+child = "slider"
+origin = { xyz = [0.3, 0.0, 0.0] }
+axis = [1.0, 0.0, 0.2]
+friction = 2.0
+actuated = true
+"#;
+
 /// The ball pushed sideways and spinning, the box pushed and twisted (both below the cone:
-/// they stick), 20 ms into the load: `Ad, Bd` against central differences of the step, in one
+/// they stick), the held arm, 20 ms into the load: `Ad, Bd` against central differences of the step, in one
 /// step of 1 ms and in ten, at orders 2 and 4 and under error control. Steps of 1e-7 in x
 /// (the bristles are 1e-5 m: measured, the agreement is 1e-12–2e-10 there, 1e-11–1e-8 at
 /// 1e-6 and 1e-8) and 1e-4 in u (the step is affine in u).
@@ -107,6 +165,7 @@ fn step_map_with_contact_agrees_with_differences_of_the_step() {
             resting_box(),
             vec![0.6, -0.4, 1.0, 0.01, -0.01, 0.02],
         ),
+        ("held arm", HELD.to_string(), vec![0.3, 0.5]),
     ];
     for (name, text, u) in cases {
         for (solver, line) in solvers {

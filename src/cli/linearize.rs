@@ -337,6 +337,11 @@ pub fn run(args: &LinearizeArgs) -> Result<(), CliError> {
     let mut from_op = Simulation::new(&op.initial_def(&def, &x_op), settings, t0)
         .map_err(|e| format!("{}: {e}", args.model))?;
     from_op.state_mut().inputs_mut().copy_from_slice(&op.u);
+    // the sticking bristles are part of the point (the state's, or fitted)
+    let (contact, joints) = op.bristles(sim.model());
+    let st = from_op.state_mut();
+    st.contact_bristles_mut().copy_from_slice(&contact);
+    st.joint_bristles_mut().copy_from_slice(&joints);
     // without --step a model whose step map is not available still gets A, B, C, D
     let map = match from_op.step_map_in(h, &loop_pick) {
         Ok(map) => Some(map),

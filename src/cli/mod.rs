@@ -68,7 +68,7 @@ pub enum Command {
     /// xdot0, t0), and the exact discrete-time Ad, Bd of one step (--step). Closed loops: x holds
     /// independent coordinates (--coordinates picks them). Contact and joint friction: the
     /// sticking bristles of the touching ground points and the friction joints are states too
-    /// (contact.C.s[i], joint.J.s; sliding is refused by name); no Ad, Bd with them yet.
+    /// (contact.C.s[i], joint.J.s; sliding is refused by name), in A and in Ad alike.
     #[command(allow_negative_numbers = true)]
     Linearize(linearize::LinearizeArgs),
     /// Write a 3-D replay of a result CSV: one self-contained HTML file (works offline) that

@@ -7,7 +7,9 @@ What the model must show (`docs/guide/linear_models.md`, "Contact and joint fric
 - rank A = 2n: the stance holds every coordinate (springs of the feet, servos);
 - exactly one zero eigenvalue per bristle state: every placement of the feet's anchors is an
   equilibrium, a family of dimension 8;
-- every other mode decays: the stance is stable.
+- every other mode decays: the stance is stable;
+- the step's map `Ad` of one communication step keeps one eigenvalue 1 per bristle state and
+  contracts every other mode.
 """
 import json
 import subprocess
@@ -45,6 +47,16 @@ def test_a_standing_quadruped_has_the_right_rank_and_stable_modes(triad_bin, tmp
     assert np.linalg.matrix_rank(A, tol=1e-10 * np.abs(A).max()) == 2 * n
     assert zero.sum() == ns
     assert (ev.real[~zero] < -1e-3).all()
+    # the step's map of one communication step h (the bristles states too): the anchors'
+    # family stays (one eigenvalue 1 per bristle state), every other mode contracts
+    Ad, h = np.array(d["Ad"]), d["h"]
+    assert Ad.shape == (nx, nx) and np.array(d["Bd"]).shape[0] == nx
+    mu = np.linalg.eigvals(Ad)
+    one = np.abs(mu - 1) < 1e-6
+    print(f"quadruped: Ad of h = {h} s: {one.sum()} eigenvalues 1, the largest other |μ| = "
+          f"{np.abs(mu[~one]).max():.6f} (exp(h·slowest Re λ) = {np.exp(h * ev.real[~zero].max()):.6f})")
+    assert one.sum() == ns
+    assert np.abs(mu[~one]).max() < 1
 
 
 def test_a_sliding_quadruped_is_named(triad_bin, tmp_path):

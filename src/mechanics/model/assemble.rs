@@ -357,8 +357,12 @@ pub(crate) fn build(
             },
             armature: if spherical { 0.0 } else { jd.armature },
             arm0,
-            friction: (!spherical && jd.friction > 0.0)
-                .then_some(super::joint_friction::JointFriction { limit: jd.friction }),
+            friction: (!spherical && jd.friction > 0.0).then_some(
+                super::joint_friction::JointFriction {
+                    limit: jd.friction,
+                    mirrored: false,
+                },
+            ),
             fric0,
             acts: std::mem::take(&mut joint_acts[j]),
         });

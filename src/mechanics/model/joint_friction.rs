@@ -18,6 +18,8 @@
 
 use super::contact_law::friction;
 use crate::math::Vec3;
+use nalgebra::Vector3;
+use num_dual::Dual64;
 
 /// The bristle's deflection at the friction limit, rad or m: `k = C/δ`.
 pub const DEFLECTION: f64 = 1e-4;
@@ -31,6 +33,9 @@ pub const TIME_CONSTANT: f64 = 1e-3;
 pub(crate) struct JointFriction {
     /// The limit `C`, N·m or N (> 0).
     pub limit: f64,
+    /// Whether the law is taken of the negated increment, `F(s₀, −u)` (the step tangent's
+    /// swapped evaluation, `step::tangent`; false in every run).
+    pub mirrored: bool,
 }
 
 /// What friction does over one step.
@@ -53,9 +58,44 @@ impl JointFriction {
         self.limit / DEFLECTION
     }
 
-    /// The step of size `h` from deflection `s0` by the increment `u` (module formulas).
+    /// The step of size `h` from deflection `s0` by the increment `u` (module formulas; a
+    /// mirrored law at `−u`, its `dforce` the derivative in `u`).
     #[must_use]
     pub fn step(&self, s0: f64, u: f64, h: f64) -> FrictionStep {
+        if self.mirrored {
+            let st = self.law(s0, -u, h);
+            return FrictionStep {
+                dforce: -st.dforce,
+                ..st
+            };
+        }
+        self.law(s0, u, h)
+    }
+
+    /// `∂F/∂s₀`, `∂s₁/∂s₀` and `∂s₁/∂u` of the step of size `h` from `s0` by `u` (the step
+    /// tangent's bristle columns), by dual numbers.
+    #[must_use]
+    pub fn partials(&self, s0: f64, u: f64, h: f64) -> [f64; 3] {
+        let k = self.stiffness();
+        let at = |ds: f64, du: f64| {
+            let x = |v: f64, d: f64| {
+                Vector3::new(Dual64::new(v, d), Dual64::from(0.0), Dual64::from(0.0))
+            };
+            friction(
+                k,
+                Dual64::from(k * TIME_CONSTANT),
+                Dual64::from(self.limit),
+                x(s0, ds),
+                x(u, du),
+                h,
+            )
+        };
+        let (by_s, by_u) = (at(1.0, 0.0), at(0.0, 1.0));
+        [by_s.force.x.eps, by_s.s1.x.eps, by_u.s1.x.eps]
+    }
+
+    /// The law itself (module formulas).
+    fn law(&self, s0: f64, u: f64, h: f64) -> FrictionStep {
         let k = self.stiffness();
         let f = friction(
             k,
@@ -86,7 +126,10 @@ mod tests {
 
     #[test]
     fn the_work_is_exact_and_never_positive_and_the_derivative_right() {
-        let fr = JointFriction { limit: 0.5 };
+        let fr = JointFriction {
+            limit: 0.5,
+            mirrored: false,
+        };
         let h = 1e-3;
         for &(s0, u) in &[
             (0.0, 1e-7),

@@ -59,6 +59,8 @@ pub(super) struct Touch {
 /// A joint coordinate with friction.
 #[derive(Clone, Debug)]
 pub(super) struct Stuck {
+    /// Its bristle's index among the joint friction bristles (`JointRt::fric0`).
+    pub(super) fric: usize,
     pub(super) joint: String,
     /// Its index in `q`, and among the joint's coordinates.
     pub(super) coord: usize,
@@ -135,6 +137,13 @@ impl Sticking {
             .filter(|t| t.at.is_some())
             .flat_map(|t| self.tangents.iter().map(move |a| (t.ground, *a)))
             .collect()
+    }
+
+    /// The joint friction bristles' states in `σ` order (after the contacts'): their indices
+    /// among the joint friction bristles (`State::joint_bristles`).
+    #[must_use]
+    pub fn joint_bristles(&self) -> Vec<usize> {
+        self.joints.iter().map(|s| s.fric).collect()
     }
 
     /// The ground points (`GroundRt::points`) that touch, with friction or without.

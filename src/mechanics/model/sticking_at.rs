@@ -92,6 +92,7 @@ impl Sticking {
             for k in 0..dofs {
                 out.sigma0.push(fric[jt.fric0 + k]);
                 out.joints.push(Stuck {
+                    fric: jt.fric0 + k,
                     joint: def.joints[j].name.clone(),
                     coord: coord + k,
                     k,

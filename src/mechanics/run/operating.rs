@@ -232,6 +232,32 @@ impl Operating {
         }
     }
 
+    /// The bristles of a state at this point: the contact bristles (`State::contact_bristles`:
+    /// 3 per ground point, world, then 3 per body–body feature, m), each touching point's
+    /// sticking bristle `Σᵢ σᵢ tᵢ` on the ground's tangent axes, the others 0; and the joint
+    /// friction bristles (`State::joint_bristles`, rad or m), those of `σ`, the others 0.
+    #[must_use]
+    pub fn bristles(&self, model: &Model) -> (Vec<f64>, Vec<f64>) {
+        let mut contact = vec![0.0; 3 * model.contact.bristles()];
+        let sticking = self.dynamics.sticking();
+        let axes = sticking.contact_axes();
+        let sigma = sticking.sigma0();
+        for ((k, axis), s) in axes.iter().zip(sigma) {
+            for i in 0..3 {
+                contact[3 * k + i] += s * axis[i];
+            }
+        }
+        let mut joints = vec![0.0; model.nfric];
+        for (i, s) in sticking
+            .joint_bristles()
+            .into_iter()
+            .zip(&sigma[axes.len()..])
+        {
+            joints[i] = *s;
+        }
+        (contact, joints)
+    }
+
     /// The tree's `(q, ν)` at the state `x` (with closed loops: completed, module docs).
     ///
     /// # Errors

@@ -187,6 +187,11 @@ impl State {
         &self.fric
     }
 
+    /// The joint friction bristles' deflections, mutable; as [`State::joint_bristles`].
+    pub fn joint_bristles_mut(&mut self) -> &mut [f64] {
+        &mut self.fric
+    }
+
     /// Damping of joint `j` (tunable), N·m·s/rad or N·s/m.
     #[must_use]
     pub fn damping(&self, j: usize) -> f64 {

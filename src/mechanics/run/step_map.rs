@@ -8,12 +8,11 @@
 //! [Ad Bd] = ∂x(t+h)/∂(x(t), u) = read-off tangent at the end × the columns
 //! closed loops: x = (q_I, ν_I); the embedding's columns × ∂(q, ν)/∂x (2k), the read-off's
 //!   rows of I (`model::minimal`, `model::loop_linear`), the same I at both ends
-//! ground contact: x = (q, ν, σ) as for A, B (`model::sticking`): a bristle state σ's column
-//!   moves its point's bristle along its axis t (δs = t), its row reads t·δs at the end;
-//!   the same points must touch at both ends (else refused by name)
+//! ground contact, joint friction: x = (q, ν, σ) as for A, B (`model::sticking`): a contact
+//!   bristle state σ's column moves its point's bristle along its axis t (δs = t), its row
+//!   reads t·δs at the end; a joint's moves its bristle; the same points must touch at both
+//!   ends (else refused by name)
 //! ```
-//!
-//! Joint friction is refused (its bristle's share of the tangent is not derived yet).
 
 use super::operating::Operating;
 use super::state::State;
@@ -40,21 +39,29 @@ pub struct StepMap {
 /// the end ([`Independent::Coords`] of those picked).
 ///
 /// # Errors
-/// Why the model has no minimal coordinates here (joint friction, a sliding contact, contact
-/// with closed loops), or a pick that is not independent here.
+/// Why the model has no minimal coordinates here (a sliding bristle, contact or friction with
+/// closed loops, friction on a spherical joint), or a pick that is not independent here.
 pub fn begin_step_map(
     model: &Model,
     state: &mut State,
     pick: &Independent,
 ) -> Result<Independent, String> {
-    if model.nfric > 0 {
-        return Err(
-            "the step's tangent map does not cover joint friction yet (A, B, C, D do)".into(),
-        );
+    if let Some(j) = model
+        .joints
+        .iter()
+        .position(|j| j.friction.is_some() && j.sph_axes.is_some())
+    {
+        return Err(format!(
+            "joint '{}' is spherical with friction: its bristles are no states of the linear \
+             model",
+            model.def().joints[j].name
+        ));
     }
     let op = Operating::picked(model, state, pick).map_err(|e| e.to_string())?;
     let axes = op.dynamics.sticking().contact_axes();
-    let ns = axes.len();
+    let fric = op.dynamics.sticking().joint_bristles();
+    let nc = axes.len();
+    let ns = nc + fric.len();
     let (n, m) = ((op.x().len() - ns) / 2, model.inputs.len());
     let nb = model.bodies.len();
     // the bristles' and the inputs' columns follow the embedding's in the same buffers (trees)
@@ -104,7 +111,13 @@ pub fn begin_step_map(
             dw[c * na + r] = dw_x[(r, c)];
         }
     }
-    let mut tangent = Tangent::new(model, cols, (xi, dv), du, (dw, ds));
+    // a joint bristle state moves its bristle
+    let nf = model.nfric;
+    let mut df = vec![0.0; nf * cols];
+    for (j, &i) in fric.iter().enumerate() {
+        df[(2 * n + nc + j) * nf + i] = 1.0;
+    }
+    let mut tangent = Tangent::new(model, cols, (xi, dv), du, (dw, ds, df));
     tangent.touching = op.dynamics.sticking().touching();
     state.ws.tangent = Some(Box::new(tangent));
     Ok(end)
@@ -157,12 +170,19 @@ pub fn finish_step_map(
             names(&touching)
         ));
     }
+    let fric = end.dynamics.sticking().joint_bristles();
     let x1 = end.x();
-    let ns = axes.len();
+    let (nc, nf) = (axes.len(), model.nfric);
+    let ns = nc + fric.len();
     let n = (x1.len() - ns) / 2;
     // the columns are stored as the read-off takes them (column-major)
     let Tangent {
-        cols, xi, dv, ds, ..
+        cols,
+        xi,
+        dv,
+        ds,
+        df,
+        ..
     } = *tangent;
     let ng = ground_points(model);
     let nodal = NodalColumns { cols, xi, dv };
@@ -189,6 +209,11 @@ pub fn finish_step_map(
         for c in 0..cols {
             let at = c * 3 * ng + 3 * k;
             full[(2 * n + j, c)] = axis.dot(&crate::math::Vec3::from_column_slice(&ds[at..at + 3]));
+        }
+    }
+    for (j, &i) in fric.iter().enumerate() {
+        for c in 0..cols {
+            full[(2 * n + nc + j, c)] = df[c * nf + i];
         }
     }
     let nx = 2 * n + ns;

@@ -149,7 +149,8 @@ impl Tangent {
         let ground = model.contact.ground.as_ref();
         let ng = ground.map_or(0, |g| g.points.len());
         let mut xi_end = vec![0.0; 6 * nb];
-        let rotors = rotors(model, ws);
+        let rotors = rotors(model, ws, h);
+        let nf = model.nfric;
         let na = model.narm;
         // per column: the right-hand side, one solve, the end's perturbation
         let nr = model.nrows;
@@ -249,8 +250,15 @@ impl Tangent {
                         &perturbation(&ws.qn, xi, pa),
                         &perturbation(&ws.qn, xi, pb),
                     );
-                    let w0 = self.dw[c * na + ro.index];
-                    let k = -jt.armature * (h * w0 + 2.0 * rate_n[r]);
+                    let mut k = ro.index.map_or(0.0, |i| {
+                        let w0 = self.dw[c * na + i];
+                        -jt.armature * (h * w0 + 2.0 * rate_n[r])
+                    });
+                    // friction: its swapped share is the mirrored law's (`Tangent::mirror`),
+                    // left is the bristle's, −(h²/2) ∂F/∂s₀ δs₀ P̄ᵀD
+                    if let Some((i, [dfds, _, _])) = ro.fric {
+                        k -= 0.5 * h * h * dfds * self.df[c * nf + i];
+                    }
                     for e in 0..6 {
                         y[6 * jt.child + e] += k * ro.col_b[e];
                         if let Some(a) = pa {
@@ -335,7 +343,7 @@ impl Tangent {
                         xic[6 * b + k] += yb[k];
                     }
                 }
-                // ω₁ = 2Δt/h − ω₀: δω₁ = (2/h)(ṫ₁(ξ') − ṫₙ(ξ)) − δω₀
+                // ω₁ = 2Δt/h − ω₀: δω₁ = (2/h)(ṫ₁(ξ') − ṫₙ(ξ)) − δω₀; the friction bristles
                 for (r, ro) in rotors.iter().enumerate() {
                     let jt = &model.joints[ro.joint];
                     let (pa, pb) = (jt.parent, Some(jt.child));
@@ -349,8 +357,15 @@ impl Tangent {
                         &perturbation(&ws.q, xic, pa),
                         &perturbation(&ws.q, xic, pb),
                     );
-                    let w = &mut self.dw[c * na + ro.index];
-                    *w = two_over_h * (rate_1 - rate_n[r]) - *w;
+                    if let Some(i) = ro.index {
+                        let w = &mut self.dw[c * na + i];
+                        *w = two_over_h * (rate_1 - rate_n[r]) - *w;
+                    }
+                    // the bristle: δs₁ = ∂s₁/∂s₀ δs₀ + ∂s₁/∂u (ṫ₁(ξ') − ṫₙ(ξ))
+                    if let Some((i, [_, dsds, dsdu])) = ro.fric {
+                        let s = &mut self.df[c * nf + i];
+                        *s = dsds * *s + dsdu * (rate_1 - rate_n[r]);
+                    }
                 }
             }
         }
@@ -570,23 +585,26 @@ fn joint_rows(model: &Model, ws: &Work, forms: &[[[f64; 6]; 2]], xi: &[f64], out
     }
 }
 
-/// A rotor (a coordinate of a joint with an armature) at the root of a stage: its joint and
-/// coordinate, its index among the rotors, and the projected discrete gradient `P̄ᵀD` of its
-/// coordinate on the joint's child and parent (`D = β (c̄ ∇s(q̄) − s̄ ∇c(q̄))` of a turn,
-/// `∇s(q̄)` of a slide), the direction of its load.
+/// A coordinate with a rotor (a joint's armature) or friction at the root of a stage: its
+/// joint and coordinate, its index among the rotors, its friction bristle's index with the
+/// law's partials `[∂F/∂s₀, ∂s₁/∂s₀, ∂s₁/∂u]` at the root's increment, and the projected
+/// discrete gradient `P̄ᵀD` of its coordinate on the joint's child and parent
+/// (`D = β (c̄ ∇s(q̄) − s̄ ∇c(q̄))` of a turn, `∇s(q̄)` of a slide), the direction of its loads.
 struct Rotor {
     joint: usize,
     dof: usize,
-    index: usize,
+    index: Option<usize>,
+    fric: Option<(usize, [f64; 3])>,
     col_b: [f64; 6],
     col_a: [f64; 6],
 }
 
-/// The rotors of `model` at the root `ws` (the midpoint `ws.qbar`, the increments `ws.dq`).
-fn rotors(model: &Model, ws: &Work) -> Vec<Rotor> {
-    let mut out = Vec::with_capacity(model.narm);
+/// The coordinates with rotors or friction of `model` at the root `ws` (the midpoint
+/// `ws.qbar`, the increments `ws.dq`) of a stage of size `h`.
+fn rotors(model: &Model, ws: &Work, h: f64) -> Vec<Rotor> {
+    let mut out = Vec::with_capacity(model.narm + model.nfric);
     for (j, jt) in model.joints.iter().enumerate() {
-        if jt.armature <= 0.0 || jt.sph_axes.is_some() {
+        if (jt.armature <= 0.0 && jt.friction.is_none()) || jt.sph_axes.is_some() {
             continue;
         }
         let p = Pair::new(ws, jt.parent, jt.child);
@@ -601,24 +619,35 @@ fn rotors(model: &Model, ws: &Work) -> Vec<Rotor> {
                 row.gradient(&p.qa_bar, &p.qb_bar, &mut g);
                 (project(&g[4..], &p.dbar_b), project(&g[..4], &p.dbar_a))
             };
-            let (col_b, col_a) = match dof {
-                DofRt::Slide(row) => grad(row),
+            // the coordinate's increment as the residual took it
+            let (col_b, col_a, inc) = match dof {
+                DofRt::Slide(row) => {
+                    let (b, a) = grad(row);
+                    (b, a, row_increment(row, &p.qa_bar, &p.qb_bar, &dqa, &dqb))
+                }
                 DofRt::Turn(tr) => {
                     let (s0, c0) = (tr.sin.eval(&qa_n, &qb_n), tr.cos.eval(&qa_n, &qb_n));
                     let ds = row_increment(&tr.sin, &p.qa_bar, &p.qb_bar, &dqa, &dqb);
                     let dc = row_increment(&tr.cos, &p.qa_bar, &p.qb_bar, &dqa, &dqb);
-                    let u = turn_load([s0, c0], [ds, dc], 1.0).unit;
+                    let load = turn_load([s0, c0], [ds, dc], 1.0);
+                    let u = load.unit;
                     let ((sb, sa), (cb, ca)) = (grad(&tr.sin), grad(&tr.cos));
                     (
                         std::array::from_fn(|e| u[0] * sb[e] + u[1] * cb[e]),
                         std::array::from_fn(|e| u[0] * sa[e] + u[1] * ca[e]),
+                        load.step.dt,
                     )
                 }
             };
+            let fric = jt.friction.as_ref().map(|fr| {
+                let i = jt.fric0 + dk;
+                (i, fr.partials(ws.fric[i], inc, h))
+            });
             out.push(Rotor {
                 joint: j,
                 dof: dk,
-                index: jt.arm0 + dk,
+                index: (jt.armature > 0.0).then_some(jt.arm0 + dk),
+                fric,
                 col_b,
                 col_a,
             });

@@ -19,25 +19,28 @@ pub struct Tangent {
     pub(crate) dw: Vec<f64>,
     /// Ground contact bristle perturbations, 3 per ground point (world), per column, m.
     pub(crate) ds: Vec<f64>,
-    /// `xi`, `dv`, `dw`, `ds` at the start of the step in progress, kept only once a stage
+    /// Joint friction bristle perturbations, one per coordinate with friction
+    /// (`Model::nfric`), per column, rad or m.
+    pub(crate) df: Vec<f64>,
+    /// `xi`, `dv`, `dw`, `ds`, `df` at the start of the step in progress, kept only once a stage
     /// moves them (`None` while the columns are still the start: a step that is never redone,
     /// or the last one of a run, copies nothing).
-    start: Option<[Vec<f64>; 4]>,
+    start: Option<[Vec<f64>; 5]>,
     /// Why the columns are not the step's derivatives (two bodies' shapes touched in a
     /// stage: their features are not covered, `contact_tangent`).
     pub(crate) inexact: Option<String>,
     /// The ground points touching at the map's start (`Sticking::touching`): the same must
     /// touch at its end, where the bristle states are read off.
     pub(crate) touching: Vec<usize>,
-    /// The model with its stop dampers and its actuators' rate terms negated, when it has any
-    /// (the swapped evaluation).
+    /// The model with its stop dampers and its actuators' rate terms negated and its joint
+    /// friction mirrored, when it has any (the swapped evaluation).
     pub(crate) mirror: Option<Box<Model>>,
 }
 
 impl Tangent {
     /// Columns `xi` (6 per body each), `dv` (12 per body each), `du` (one per model input
-    /// each), `dw` (one per rotor each) and `ds` (3 per ground point each), column-major, for
-    /// `model`.
+    /// each), `dw` (one per rotor each), `ds` (3 per ground point each) and `df` (one per
+    /// joint friction bristle each), column-major, for `model`.
     ///
     /// # Panics
     /// When the lengths do not match `cols` columns of `model`.
@@ -47,7 +50,7 @@ impl Tangent {
         cols: usize,
         (xi, dv): (Vec<f64>, Vec<f64>),
         du: Vec<f64>,
-        (dw, ds): (Vec<f64>, Vec<f64>),
+        (dw, ds, df): (Vec<f64>, Vec<f64>, Vec<f64>),
     ) -> Self {
         let nb = model.bodies.len();
         assert_eq!(xi.len(), 6 * nb * cols, "tangent: xi length");
@@ -62,6 +65,7 @@ impl Tangent {
         let damped = model.joints.iter().any(|j| {
             j.stops.is_some_and(|s| s.damping != 0.0)
                 || j.acts.list.iter().any(|a| a.has_rate_term())
+                || j.friction.is_some()
         });
         let mirror = damped.then(|| {
             let mut m = model.clone();
@@ -71,6 +75,9 @@ impl Tangent {
                 }
                 for a in &mut j.acts.list {
                     a.rate_sign = -a.rate_sign;
+                }
+                if let Some(f) = &mut j.friction {
+                    f.mirrored = true;
                 }
             }
             Box::new(m)
@@ -83,6 +90,7 @@ impl Tangent {
             du,
             dw,
             ds,
+            df,
             inexact: None,
             touching: Vec::new(),
             mirror,
@@ -91,11 +99,12 @@ impl Tangent {
 
     /// Back to the start of the step in progress.
     pub(crate) fn rewind(&mut self) {
-        if let Some([xi, dv, dw, ds]) = &self.start {
+        if let Some([xi, dv, dw, ds, df]) = &self.start {
             self.xi.copy_from_slice(xi);
             self.dv.copy_from_slice(dv);
             self.dw.copy_from_slice(dw);
             self.ds.copy_from_slice(ds);
+            self.df.copy_from_slice(df);
         }
     }
 
@@ -113,6 +122,7 @@ impl Tangent {
                 self.dv.clone(),
                 self.dw.clone(),
                 self.ds.clone(),
+                self.df.clone(),
             ]);
         }
     }

@@ -267,7 +267,10 @@ mod tests {
             let (s0, c0) = (t0.sin(), t0.cos());
             let t1: f64 = t0 + dt_true;
             let (ds, dc) = (t1.sin() - s0, t1.cos() - c0);
-            let fr = JointFriction { limit: 0.4 };
+            let fr = JointFriction {
+                limit: 0.4,
+                mirrored: false,
+            };
             let fric = Some((&fr, 3e-5));
             let st = turn_step(
                 [s0, c0],
