@@ -23,7 +23,7 @@
 //! it is taken. Body–body features are not covered: the tangent marks itself inexact where one
 //! touches (`Tangent::inexact`).
 
-use super::contact::ground_law;
+use super::ground_law::ground_law;
 use super::work::Work;
 use crate::math::Vec3;
 use crate::mechanics::model::constraint::{body_nodes, read3, Nodes};
@@ -34,17 +34,6 @@ use nalgebra::Vector3;
 use num_dual::Dual64;
 
 type D3 = Vector3<Dual64>;
-
-/// How a Jacobian pass takes the contact forces (`Work::contact_jacobian`).
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
-pub enum ContactJacobian {
-    /// Each body's own terms, the coupling through features left out (`contact`): Newton.
-    Newton,
-    /// The ground points' blocks exact (module formulas): the tangent's matrix at the root.
-    Exact,
-    /// No contact forces at all: the tangent's other terms, evaluated alone.
-    Off,
-}
 
 /// The nodes' change `(δφ, δθ × dᵢ)` under the twist `xi` at nodes `q`.
 fn moved(q: &Nodes, xi: &[f64]) -> Nodes {

@@ -6,8 +6,8 @@
 //!   `body_terms` (inertia and body loads), `joint_loads` (actuators, springs, dampers),
 //!   `coupling` (the rows of joint couplings), `turn`
 //!   (the exact discrete gradient of a joint angle), `contact` (ground and body–body contact
-//!   forces, their work and the friction bristles), `increment` (the multiplier form's linear
-//!   solve and update);
+//!   forces, their work and the friction bristles; one ground point's law in `ground_law`),
+//!   `increment` (the multiplier form's linear solve and update);
 //! - `reduced`: Newton on the joint increments for trees (the discrete null-space method);
 //! - `predictor` (the Newton start from the previous stages), `finish` (velocity update, work
 //!   account, unwrapped angles), `momentum` (bodies in contact: the momenta exact at any
@@ -26,6 +26,7 @@ pub(crate) mod contact_tangent;
 pub(crate) mod coupling;
 pub(crate) mod error;
 pub(crate) mod finish;
+pub(crate) mod ground_law;
 pub(crate) mod identity;
 pub(crate) mod increment;
 pub(crate) mod joint_loads;

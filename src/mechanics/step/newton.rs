@@ -27,10 +27,10 @@
 
 use super::body_terms::project_bodies;
 use super::contact::contact_forces;
-use super::contact_tangent::ContactJacobian;
 pub(crate) use super::increment::{resolve, solve, update};
 pub(crate) use super::joint_loads::apply_joint;
 use super::joint_loads::{joint_loads, loaded, Acc, Pair};
+use super::work::ContactJacobian;
 pub(crate) use super::work::{Held, Mode, Norms, Work};
 use crate::math::Vec3;
 use crate::mechanics::model::constraint::body_nodes;

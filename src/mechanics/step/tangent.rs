@@ -55,13 +55,14 @@
 #![allow(clippy::needless_range_loop)]
 
 use super::contact::touching_features;
-use super::contact_tangent::{bristle_column, column_share, ContactJacobian};
+use super::contact_tangent::{bristle_column, column_share};
 use super::error::StepError;
 use super::increment::coupling_entry;
 use super::joint_loads::Pair;
 use super::newton::{evaluate, resolve, solve, stage_rates, Held, Mode, Work};
 pub use super::tangent_state::Tangent;
 use super::turn::{row_increment, turn_load};
+use super::work::ContactJacobian;
 use crate::math::{Mat3, Vec3};
 use crate::mechanics::linalg::tree::lanes::{solve_factored_lanes, Lanes, LANES};
 use crate::mechanics::linalg::tree::NMAX;

@@ -1,6 +1,5 @@
 //! The preallocated Newton workspace of a step and the loads held over it.
 
-use super::contact_tangent::ContactJacobian;
 use super::reduced::work::RedWork;
 use super::tangent_state::Tangent;
 use crate::mechanics::linalg::border::Border;
@@ -261,6 +260,17 @@ impl Work {
             contact_jacobian: ContactJacobian::Newton,
         }
     }
+}
+
+/// How a Jacobian pass takes the contact forces (`Work::contact_jacobian`).
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum ContactJacobian {
+    /// Each body's own terms, the coupling through features left out (`contact`): Newton.
+    Newton,
+    /// The ground points' blocks exact (module formulas): the tangent's matrix at the root.
+    Exact,
+    /// No contact forces at all: the tangent's other terms, evaluated alone.
+    Off,
 }
 
 /// Loads and parameters held over a step.
