@@ -202,3 +202,22 @@ fn a_landing_within_the_step_is_refused() {
     assert!(err.contains("touch change"), "{err}");
     eprintln!("{err}");
 }
+
+/// The bristles `triad linearize` starts the step from (`Operating::bristles`, from `σ`) are
+/// the state's: its contact bristles' tangential parts and its joint bristles.
+#[test]
+fn the_points_bristles_are_the_states() {
+    for (text, u) in [
+        (ball([0.0; 3], [0.0, 0.0, 0.3]), vec![0.7, -0.4, 1.0]),
+        (HELD.to_string(), vec![0.3, 0.5]),
+    ] {
+        let (def, settings, op, (contact, joints)) = loaded(&text, &u, 20);
+        let model = Simulation::new(&def, settings, 0.0).unwrap();
+        let (c, j) = op.bristles(model.model());
+        assert!(contact.iter().chain(&joints).any(|&s| s.abs() > 1e-7));
+        for (a, b) in c.iter().zip(&contact) {
+            assert!((a - b).abs() <= 1e-18, "{c:?} {contact:?}");
+        }
+        assert_eq!(j, joints);
+    }
+}
