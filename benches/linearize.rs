@@ -8,6 +8,9 @@
 //! at the default max_step, `Simulation::step_map`; the chains with a torque input on every
 //! joint): per stage three Newton-matrix assemblies,
 //! two factorisations, and one O(N) back-substitution per column (2n + inputs): O(N²).
+//! `step_map/box`: a box resting on four of its corners (12 states, 8 bristle states, 6
+//! inputs; `tests/common/contact_models.rs`), beside `step_map/box_step`, the same step without
+//! its map.
 //!
 //! Run: `cargo bench --bench linearize -- --warm-up-time 1 --measurement-time 5`.
 use criterion::{criterion_group, criterion_main, BenchmarkId, Criterion};
@@ -56,7 +59,21 @@ fn bench(c: &mut Criterion) {
         }
         (def, format!("chain{n}"))
     });
-    for (def, name) in std::iter::once(robot).chain(chains) {
+    let boxed = {
+        let text = common::contact_models::resting_box();
+        let spec =
+            triad::spec::Spec::from_str(&text, triad::spec::Format::Toml, "box").expect("spec");
+        (spec.lower().expect("lower").0, "box".to_string())
+    };
+    let sim = triad::sim::Simulation::new(&boxed.0, SolverSettings::default(), 0.0).expect("sim");
+    g.bench_function("box_step", |b| {
+        b.iter_batched(
+            || sim.clone(),
+            |mut s| s.advance(1e-3).expect("step"),
+            criterion::BatchSize::SmallInput,
+        );
+    });
+    for (def, name) in std::iter::once(robot).chain(chains).chain([boxed]) {
         let sim = triad::sim::Simulation::new(&def, SolverSettings::default(), 0.0).expect("sim");
         // a fresh copy of the run per map, outside the timing
         g.bench_function(name, |b| {

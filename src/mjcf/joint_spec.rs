@@ -2,7 +2,7 @@
 //! of `lower`: `O_k = M_{k−1} ∘ T(a_k) ∘ R(n_k, −ref_k)` for a hinge, `M_{k−1} ∘ T(a_k − n_k
 //! ref_k)` for a slide, `M_{k−1} ∘ T(a_k)` for a ball), its stops, spring, damper, armature,
 //! friction and actuator force range, its initial `q = ref`, and notes on what a spherical joint
-//! cannot take.
+//! cannot take or takes differently.
 
 use super::model::{Joint, JointType};
 use crate::import::frame::Iso;
@@ -43,14 +43,14 @@ pub(super) fn joint(
     };
     let movable = kind != JointKind::Spherical;
     let what = format!("joint '{}'", j.name.as_deref().unwrap_or(&id));
-    // armature and frictionloss are triad's armature and Coulomb friction on hinge and
-    // slide joints; a ball joint's are noted (triad's spherical joints take neither)
+    // armature and frictionloss are triad's armature and Coulomb friction; a ball joint's
+    // armature is noted (triad's spherical joints take none), its frictionloss is a cone
     if !movable && j.armature > 0.0 {
         notes.push(format!("{what}: armature=\"{}\" of a ball joint is not modelled: the joint is lighter than in MuJoCo", j.armature));
     }
     if !movable && j.frictionloss > 0.0 {
         notes.push(format!(
-            "{what}: frictionloss=\"{}\" of a ball joint is not modelled",
+            "{what}: frictionloss=\"{}\" of a ball joint limits the friction torque's magnitude (a cone |τ| ≤ {0}); MuJoCo limits each of its three axes",
             j.frictionloss
         ));
     }
@@ -96,7 +96,7 @@ pub(super) fn joint(
         damping: j.damping,
         stiffness: if movable { j.stiffness } else { 0.0 },
         armature: if movable { j.armature } else { 0.0 },
-        friction: if movable { j.frictionloss } else { 0.0 },
+        friction: j.frictionloss,
         lower,
         upper,
         effort: None,

@@ -17,9 +17,9 @@
 //!   body (a floating base); a body without joints is merged into its parent (its frame a
 //!   site); several joints in one body are chained through massless bodies;
 //! - `ref` is exact (the joint frame is turned or shifted by it), so `q` = `qpos`; a hinge's or
-//!   slide's `armature` and `frictionloss` are the joint's `armature` and Coulomb `friction`;
-//!   `springref`, a ball joint's armature and frictionloss and `<equality joint>` are imported
-//!   with a note saying what is not reproduced;
+//!   slide's `armature` and `frictionloss` are the joint's `armature` and Coulomb `friction`
+//!   (a ball's `frictionloss` its friction cone); `springref`, a ball joint's armature and
+//!   `<equality joint>` are imported with a note saying what is not reproduced;
 //! - `<motor>`, `<position>`, `<velocity>` (and `<general>` equal to one of them) on a hinge or
 //!   slide are `[[actuator]]`s with MuJoCo's law, gear and clamps: the input `actuator.A.ctrl`;
 //!   a hinge's or slide's `actuatorfrcrange` (limited by `actuatorfrclimited`, or given with

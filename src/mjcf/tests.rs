@@ -325,3 +325,20 @@ fn bad_inputs_name_file_line_and_element() {
     let m = refused("<robot/>");
     assert!(m.contains("<mujoco>"), "{m}");
 }
+
+#[test]
+fn a_ball_frictionloss_is_its_friction_cone() {
+    let text = r#"<mujoco><worldbody>
+      <body><joint name="b" type="ball" frictionloss="0.3" armature="0.1"/><geom size="0.1"/></body>
+      </worldbody></mujoco>"#;
+    let (s, outcome) = import(text, Path::new("model.xml"), &ImportOptions::default()).unwrap();
+    assert_eq!(s.joint[0].kind, JointKind::Spherical);
+    assert_eq!(s.joint[0].friction, 0.3);
+    assert_eq!(s.joint[0].armature, 0.0);
+    let notes = outcome.notes.join("\n");
+    assert!(notes.contains("|τ| ≤ 0.3"), "{notes}");
+    assert!(
+        notes.contains("armature=\"0.1\" of a ball joint is not modelled"),
+        "{notes}"
+    );
+}

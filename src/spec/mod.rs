@@ -22,7 +22,7 @@
 //! | `[[joint]]` `axis`, `axis2` | 3 numbers | joint axis in the joint frame (normalised); `axis2` for universal joints, ⟂ `axis` |
 //! | `[[joint]]` `actuated`, `damping`, `stiffness` | bool, numbers ≥ 0 | actuator inputs (false); viscous damping (0); spring about q = 0 (0) |
 //! | `[[joint]]` `armature` | number ≥ 0 | rotor inertia in joint space, kg·m² or kg (0; not spherical, fixed or loop-closing) |
-//! | `[[joint]]` `friction` | number ≥ 0 | Coulomb friction per coordinate, N·m or N (0; not spherical, fixed or loop-closing) |
+//! | `[[joint]]` `friction` | number ≥ 0 | Coulomb friction per coordinate, N·m or N; on a spherical joint a cone on its relative rotation, N·m (0; not fixed or loop-closing) |
 //! | `[[joint]]` `lower`, `upper`, `effort` | numbers | revolute and prismatic: position limits (one-sided stops; none), actuator clamp ±effort (none) |
 //! | `[[joint]]` `actuatorfrcrange` | `[lo, hi]`, lo < hi | revolute and prismatic: the sum of the `[[actuator]]`s' generalised forces on the joint clamped, N·m or N (none; MuJoCo's `actuatorfrcrange`) |
 //! | `[[joint]]` `stop_stiffness`, `stop_damping` | numbers | the stops' spring (1e4 N·m/rad or N/m) and Hunt–Crossley damping (0) |

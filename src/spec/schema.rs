@@ -393,7 +393,8 @@ pub struct JointSpec {
     /// fixed): adds `armature·q̇²/2` of kinetic energy, as MuJoCo and Pinocchio define it.
     #[serde(default, skip_serializing_if = "is_zero")]
     pub armature: f64,
-    /// Coulomb friction per coordinate, N·m or N (≥ 0; not spherical, fixed or loop-closing):
+    /// Coulomb friction per coordinate, N·m or N; on a spherical joint a cone `|τ| ≤ C` on its
+    /// relative rotation (≥ 0; not fixed or loop-closing):
     /// sticks below breakaway, slides at it, its loss counted in `system.work`.
     #[serde(default, skip_serializing_if = "is_zero")]
     pub friction: f64,

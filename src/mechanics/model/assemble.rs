@@ -55,11 +55,20 @@ impl Model {
             }
         }
         for jd in &def.joints {
-            let bad_kind = matches!(jd.kind, JointType::Spherical | JointType::Fixed);
-            for (what, a) in [("armature", jd.armature), ("friction", jd.friction)] {
+            let spherical = jd.kind == JointType::Spherical;
+            let fixed = jd.kind == JointType::Fixed;
+            for (what, a, bad_kind, kinds) in [
+                (
+                    "armature",
+                    jd.armature,
+                    spherical || fixed,
+                    "not spherical or fixed",
+                ),
+                ("friction", jd.friction, fixed, "not fixed"),
+            ] {
                 if !(a.is_finite() && a >= 0.0) || (a > 0.0 && (bad_kind || jd.loop_closing)) {
                     return Err(ModelError::Invalid(format!(
-                        "joint '{}': {what} must be finite and >= 0, and only on the coordinates of a tree joint that is not spherical or fixed (got {a})",
+                        "joint '{}': {what} must be finite and >= 0, and only on a tree joint that is {kinds} (got {a})",
                         jd.name
                     )));
                 }
@@ -357,20 +366,19 @@ pub(crate) fn build(
             },
             armature: if spherical { 0.0 } else { jd.armature },
             arm0,
-            friction: (!spherical && jd.friction > 0.0).then_some(
-                super::joint_friction::JointFriction {
-                    limit: jd.friction,
-                    mirrored: false,
-                },
-            ),
+            friction: (jd.friction > 0.0).then_some(super::joint_friction::JointFriction {
+                limit: jd.friction,
+                mirrored: false,
+            }),
             fric0,
             acts: std::mem::take(&mut joint_acts[j]),
         });
         if !spherical && jd.armature > 0.0 {
             arm0 += dofs_len;
         }
-        if !spherical && jd.friction > 0.0 {
-            fric0 += dofs_len;
+        if jd.friction > 0.0 {
+            // a spherical joint's bristle is a vector (`joint_friction`)
+            fric0 += if spherical { 3 } else { dofs_len };
         }
         row0 += nrow;
         turn0 += nturn;

@@ -10,6 +10,18 @@
 //! F u = −(½k s₁² − ½k s₀²) − D,   D = 2kλ(1 − λ) s*² + λ c u²/h ≥ 0     (exact)
 //! ```
 //!
+//! On a spherical joint the bristle is a vector `s` (rad, kept in the parent's axes: it turns
+//! with the parent; a stage reads and writes it in the parent's axes at its start, so a joint
+//! that turns as one body keeps it) on the relative rotation increment `u = θᴮ − θᴬ` of the
+//! stage (world),
+//! and the law is the contact's in three dimensions, the torque `F` limited to the cone
+//! `|F| ≤ C` (isotropic, not MuJoCo's per-axis box):
+//!
+//! ```text
+//! s₀ = R_A(qₙ) s₀ᴬ,   F, s₁ = friction(k, c, C, s₀, u),   s₁ᴬ = R_A(qₙ)ᵀ s₁,   F u = −Δ(½k|s|²) − D
+//! ∂F/∂u = −(stiff 1 + radial t̂ t̂ᵀ)
+//! ```
+//!
 //! Below `YIELD·C` (0.9 of the limit) nothing slides: the coordinate deflects by at most
 //! `0.9 δ` (the creep bound: it holds below breakaway to within `δ`, and does not drift while
 //! the load stays below it); above it the anchor slides and in sustained sliding `|F| → C`.
@@ -17,7 +29,7 @@
 //! `½k s²` is part of the energy, `D` of the work.
 
 use super::contact_law::friction;
-use crate::math::Vec3;
+use crate::math::{Mat3, Vec3};
 use nalgebra::Vector3;
 use num_dual::Dual64;
 
@@ -70,6 +82,17 @@ impl JointFriction {
             };
         }
         self.law(s0, u, h)
+    }
+
+    /// The step of size `h` of a spherical joint's bristle `s0` (world axes) by the relative
+    /// rotation increment `u` (world, rad), module formulas: the torque on the child (N·m,
+    /// world), `−∂F/∂u` (3 × 3), the bristle at the end (world) and the loss (J).
+    #[must_use]
+    pub fn step3(&self, s0: Vec3, u: Vec3, h: f64) -> (Vec3, Mat3, Vec3, f64) {
+        let k = self.stiffness();
+        let f = friction(k, k * TIME_CONSTANT, self.limit, s0, u, h);
+        let stiff = Mat3::identity() * f.stiff + f.dir * f.dir.transpose() * f.radial;
+        (f.force, stiff, f.s1, f.loss)
     }
 
     /// `∂F/∂s₀`, `∂s₁/∂s₀` and `∂s₁/∂u` of the step of size `h` from `s0` by `u` (the step

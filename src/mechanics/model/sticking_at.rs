@@ -86,7 +86,7 @@ impl Sticking {
                 continue;
             };
             if td.is_spherical(j) {
-                continue;
+                return Err(Unsupported::SphericalFriction(def.joints[j].name.clone()));
             }
             let dofs = def.joints[j].kind.dof();
             for k in 0..dofs {

@@ -21,6 +21,8 @@ pub enum Unsupported {
     Sliding(String, u32),
     /// Closed loops or couplings with touching contacts or joint friction.
     LoopSticking,
+    /// A spherical joint has friction (its vector bristle has no linear model yet).
+    SphericalFriction(String),
 }
 
 impl std::fmt::Display for Unsupported {
@@ -33,6 +35,7 @@ impl std::fmt::Display for Unsupported {
             Self::Touching(a, b) => write!(f, "shapes '{a}' and '{b}' touch at the operating point; linear models cover contact with the ground only (move the point, or leave the pair out)"),
             Self::Sliding(what, r) => write!(f, "{what} slides at the operating point (its friction at {r}% of its limit; a linear model needs every bristle to stick, below {:.0}%: it has no continuous-time limit while it slides)", 100.0 * super::contact_law::YIELD),
             Self::LoopSticking => write!(f, "closed loops or couplings together with touching contacts or joint friction have no linear model here yet"),
+            Self::SphericalFriction(j) => write!(f, "joint '{j}' is spherical with Coulomb friction; its vector bristle has no linear model yet"),
             Self::Coupling(j) => write!(f, "joint '{j}' follows another joint through a [[coupling]]; coupled joints are linearised by `triad linearize` only (in independent coordinates), not here"),
         }
     }

@@ -188,6 +188,11 @@ pub(crate) fn update(
         for row in jt.rows.iter().chain(jt.dropped.iter()) {
             resid = resid.max(row.eval(&qa, &qb).abs());
         }
+        // a spherical joint's friction bristle, ½ k |s|²
+        if let (Some(fr), Some(_)) = (&jt.friction, &jt.sph_axes) {
+            let s = &fric[jt.fric0..jt.fric0 + 3];
+            energy += 0.5 * fr.stiffness() * s.iter().map(|x| x * x).sum::<f64>();
+        }
         // joint springs
         let k = stiffness[j];
         let mut turn = jt.turn0;

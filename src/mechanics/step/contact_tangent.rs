@@ -93,11 +93,34 @@ fn dbar(ws: &Work, b: usize) -> [Vec3; 3] {
     [q[1], q[2], q[3]]
 }
 
-/// Adds the exact blocks `P̄ᵀ ∂R̃_c/∂ξ₁` of every ground point to
+/// Per ground point, whether it touches at either end of the stage in `ws` (penetration
+/// `x₀ > 0` or `x₁ > 0`). One that does not carries no force and ends with its bristle
+/// released (`s₁ = 0`) whatever the column: its shares are exactly 0 and are skipped.
+pub(super) fn touching_points(g: &GroundRt, ws: &Work, h: f64) -> Vec<bool> {
+    g.points
+        .iter()
+        .map(|p| {
+            let b = p.body;
+            let (q0, dq, qbar) = (
+                body_nodes(&ws.qn, b),
+                body_nodes(&ws.dq, b),
+                body_nodes(&ws.qbar, b),
+            );
+            let st = ground_law(p, &g.normal, g.height, [&q0, &dq, &qbar], Vec3::zeros(), h);
+            st.x0 > 0.0 || st.x1 > 0.0
+        })
+        .collect()
+}
+
+/// Adds the exact blocks `P̄ᵀ ∂R̃_c/∂ξ₁` of every ground point that touches to
 /// `ws.xbody` (row-major 6 × 6), module formulas.
 pub(super) fn exact_blocks(g: &GroundRt, ws: &mut Work, h: f64) {
     let zero = [0.0; 6];
+    let touching = touching_points(g, ws, h);
     for (k, p) in g.points.iter().enumerate() {
+        if !touching[k] {
+            continue;
+        }
         let d = dbar(ws, p.body);
         for e in 0..6 {
             let mut unit = [0.0; 6];
@@ -113,11 +136,20 @@ pub(super) fn exact_blocks(g: &GroundRt, ws: &mut Work, h: f64) {
     }
 }
 
-/// Adds every ground point's share of a column's right-hand side, `δ(P̄ᵀ R̃_c)` with both ends
-/// moved by the column's twists `xi` (6 per body) and the bristles by `ds` (3 per point), to
-/// `y` (6 per body); module formulas.
-pub(super) fn column_share(g: &GroundRt, ws: &Work, xi: &[f64], ds: &[f64], h: f64, y: &mut [f64]) {
+/// Adds the share of every ground point that touches (`touching`) to a column's right-hand
+/// side, `δ(P̄ᵀ R̃_c)` with both ends moved by the column's twists `xi` (6 per body) and the
+/// bristles by `ds` (3 per point), to `y` (6 per body); module formulas.
+pub(super) fn column_share(
+    (g, touching): (&GroundRt, &[bool]),
+    ws: &Work,
+    (xi, ds): (&[f64], &[f64]),
+    h: f64,
+    y: &mut [f64],
+) {
     for (k, p) in g.points.iter().enumerate() {
+        if !touching[k] {
+            continue;
+        }
         let b = p.body;
         let xb = &xi[6 * b..6 * b + 6];
         let ds0 = read3(ds, 3 * k);
@@ -137,9 +169,10 @@ pub(super) fn column_share(g: &GroundRt, ws: &Work, xi: &[f64], ds: &[f64], h: f
 }
 
 /// The bristles' columns at the stage's end (3 per point, into `ds1`) along the start twists
-/// `xi0`, the end twists `xi1` (6 per body) and the start bristles `ds0`; module formulas.
+/// `xi0`, the end twists `xi1` (6 per body) and the start bristles `ds0`; module formulas (a
+/// point that does not touch, `touching`, is released: 0).
 pub(super) fn bristle_column(
-    g: &GroundRt,
+    (g, touching): (&GroundRt, &[bool]),
     ws: &Work,
     [xi0, xi1]: [&[f64]; 2],
     ds0: &[f64],
@@ -147,6 +180,10 @@ pub(super) fn bristle_column(
     ds1: &mut [f64],
 ) {
     for (k, p) in g.points.iter().enumerate() {
+        if !touching[k] {
+            ds1[3 * k..3 * k + 3].fill(0.0);
+            continue;
+        }
         let b = p.body;
         let at = 6 * b..6 * b + 6;
         let (_, s1) = ground_dual(

@@ -23,14 +23,14 @@
 #![allow(clippy::needless_range_loop)]
 
 use super::contact::contact_finish;
-use super::joint_loads::{actuator_input, turn_start};
+use super::joint_loads::{actuator_input, sph_bristle, turn_start};
 use super::turn::{row_increment, turn_step};
 use super::work::{Held, Work};
 use crate::math::Vec3;
 use crate::mechanics::model::assemble::unwrap;
 use crate::mechanics::model::constraint::body_nodes;
-use crate::mechanics::model::constraint::read3;
 use crate::mechanics::model::constraint::Nodes;
+use crate::mechanics::model::constraint::{read3, write3};
 use crate::mechanics::model::kernels::rotation_increment;
 use crate::mechanics::model::runtime::{DofRt, Model};
 
@@ -151,6 +151,21 @@ pub(crate) fn finish(model: &Model, ws: &mut Work, held: &Held, h: f64) -> f64 {
         if let Some(axes) = &jt.sph_axes {
             let rel = th_rel;
             gained -= c_d * rel.norm_squared() / h;
+            // the friction bristle's end (back in the parent's axes of the stage's start, as
+            // it was read: the increment adds in the parent's axes) and its loss
+            if let Some(fr) = &jt.friction {
+                let s0 = sph_bristle(ws, jt.fric0, a, &ws.qn);
+                let (_, _, s1, loss) = fr.step3(s0, rel, h);
+                let s1 = match a {
+                    Some(a) => {
+                        let n = body_nodes(&ws.qn, a);
+                        Vec3::new(n[1].dot(&s1), n[2].dot(&s1), n[3].dot(&s1))
+                    }
+                    None => s1,
+                };
+                write3(&mut ws.fric1, jt.fric0, &s1);
+                gained -= loss;
+            }
             for (k, ax) in axes.iter().enumerate() {
                 let act = jt.input.map_or(0.0, |i| held.inputs[i + k]);
                 if act != 0.0 {

@@ -11,7 +11,7 @@
 
 use super::turn::{row_increment, theta_jac, turn_step};
 use super::work::{Held, Work};
-use crate::math::Vec3;
+use crate::math::{Mat3, Vec3};
 use crate::mechanics::model::constraint::{body_nodes, read3, write3, DotRow, Nodes};
 use crate::mechanics::model::kernels::{
     linvec_jac, node_block, outer, project, push_torque, rotation_increment, row_q, torque_jac,
@@ -324,23 +324,31 @@ pub(crate) fn joint_loads(
                 }
             }
         }
+        // friction: the bristle's torque on the relative rotation (`joint_friction`)
+        let mut stiff = Mat3::identity() * (c_d / h);
+        if let Some(fr) = &jt.friction {
+            let s0 = sph_bristle(ws, jt.fric0, a, &ws.qn);
+            let (f, k, _, _) = fr.step3(s0, rel, h);
+            tv += f;
+            stiff += k;
+        }
         sph_t += tv;
         push_torque(&mut ws.mom, bb, a, &(sph_t * hh));
-        if jac && c_d != 0.0 {
-            // d(hh (c/h)(θᴮ − θᴬ))/dε through the exact ∂θ/∂ε of each body
-            let kap = hh * c_d / h;
+        if jac && stiff != Mat3::zeros() {
+            // d(hh K (θᴮ − θᴬ))/dε through the exact ∂θ/∂ε of each body, K = −∂τ/∂θ
+            let kap = stiff * hh;
             let qa_n = a.map_or(zero, |a| body_nodes(&ws.qn, a));
             let qb_n = body_nodes(&ws.qn, bb);
-            let jb = theta_jac(&qb_n, qb);
-            let ja = a.map(|_| theta_jac(&qa_n, qa));
+            let jb = kap * theta_jac(&qb_n, qb);
+            let ja = a.map(|_| kap * theta_jac(&qa_n, qa));
             for r in 0..3 {
                 for c in 0..3 {
                     let o = (r + 3) * 6 + 3 + c;
-                    x_bb[o] += kap * jb[(r, c)];
+                    x_bb[o] += jb[(r, c)];
                     if let Some(ja) = &ja {
-                        x_aa[o] += kap * ja[(r, c)];
-                        x_ab[o] -= kap * jb[(r, c)];
-                        x_ba[o] -= kap * ja[(r, c)];
+                        x_aa[o] += ja[(r, c)];
+                        x_ab[o] -= jb[(r, c)];
+                        x_ba[o] -= ja[(r, c)];
                     }
                 }
             }
@@ -496,4 +504,17 @@ pub(crate) fn apply_joint(ws: &mut Work, p: &Pair, acc: &mut Acc, jac: bool) -> 
     }
     node_block(&cba, &p.dbar_b, &p.d_a, &mut acc.x_ba);
     true
+}
+
+/// A spherical joint's friction bristle (kept in the parent's axes at `fric0`, `ws.fric`) in
+/// world axes with the parent's directors at the nodes `q` (`joint_friction`).
+pub(crate) fn sph_bristle(ws: &Work, fric0: usize, parent: Option<usize>, q: &[f64]) -> Vec3 {
+    let s = read3(&ws.fric, fric0);
+    match parent {
+        Some(a) => {
+            let n = body_nodes(q, a);
+            n[1] * s.x + n[2] * s.y + n[3] * s.z
+        }
+        None => s,
+    }
 }

@@ -55,7 +55,7 @@
 #![allow(clippy::needless_range_loop)]
 
 use super::contact::touching_features;
-use super::contact_tangent::{bristle_column, column_share};
+use super::contact_tangent::{bristle_column, column_share, touching_points};
 use super::error::StepError;
 use super::increment::coupling_entry;
 use super::joint_loads::Pair;
@@ -149,6 +149,9 @@ impl Tangent {
         }
         let ground = model.contact.ground.as_ref();
         let ng = ground.map_or(0, |g| g.points.len());
+        let touching = ground
+            .map(|g| touching_points(g, ws, h))
+            .unwrap_or_default();
         let mut xi_end = vec![0.0; 6 * nb];
         let rotors = rotors(model, ws, h);
         let nf = model.nfric;
@@ -233,7 +236,7 @@ impl Tangent {
                 if let Some(g) = ground {
                     let ds = &self.ds[c * 3 * ng..(c + 1) * 3 * ng];
                     if xi.iter().chain(ds).any(|&x| x != 0.0) {
-                        column_share(g, ws, xi, ds, h, y);
+                        column_share((g, &touching), ws, (xi, ds), h, y);
                     }
                 }
                 // the rotors: ∂r/∂ω₀ δω₀ = −a h P̄ᵀD δω₀, and the swapped evaluation's share of
@@ -314,7 +317,7 @@ impl Tangent {
                     }
                     let ds = &mut self.ds[c * 3 * ng..(c + 1) * 3 * ng];
                     let ds0 = ds.to_vec();
-                    bristle_column(g, ws, [xi, &xi_end], &ds0, h, ds);
+                    bristle_column((g, &touching), ws, [xi, &xi_end], &ds0, h, ds);
                 }
                 // δa = Q_{n+1} Y + (Q_{n+1} − Qₙ) ξ − h δv,  δv_{n+1} = δv + (2/h) δa
                 let dvc = &mut self.dv[c * 12 * nb..(c + 1) * 12 * nb];

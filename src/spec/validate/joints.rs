@@ -103,12 +103,16 @@ fn fields(report: &mut Report, p: &str, j: &JointSpec) {
                 format!("{p}.{field}"),
                 format!("a loop-closing joint takes no {field} (its coordinate is not free: put it on a tree joint of the loop)"),
             );
-        } else if v > 0.0 && matches!(j.kind, JointKind::Fixed | JointKind::Spherical) {
+        } else if v > 0.0
+            && (j.kind == JointKind::Fixed
+                || (j.kind == JointKind::Spherical && field == "armature"))
+        {
             report.push(
                 format!("{p}.{field}"),
                 format!(
-                    "{} joints take no {what} on a joint coordinate: revolute, prismatic, cylindrical, universal or planar)",
-                    kind_name(j.kind)
+                    "{} joints take no {what} on a joint coordinate: revolute, prismatic, cylindrical, universal or planar{})",
+                    kind_name(j.kind),
+                    if field == "friction" { "; on a spherical joint, on its relative rotation" } else { "" }
                 ),
             );
         }
