@@ -4,8 +4,8 @@
 
 mod common;
 
-use common::spec_model;
 use common::trees::{with_armature, ALL_KINDS, FLOATING, ROTOR};
+use common::{spec_error, spec_model};
 use triad::mechanics::{step, Model, Operating, State};
 
 fn set_inputs(s: &mut State, u: &[f64]) {
@@ -155,10 +155,7 @@ fn bad_armatures_are_refused() {
             "spherical joints take no armature",
         ),
     ] {
-        let err = triad::spec::Spec::from_str(&bad, triad::spec::Format::Toml, "bad.toml")
-            .and_then(|s| s.lower().map(|_| ()))
-            .map(|()| String::new())
-            .unwrap_or_else(|e| e.to_string());
+        let err = spec_error(&bad);
         assert!(err.contains(words), "{words:?} not in {err:?}");
     }
 }

@@ -5,8 +5,8 @@
 
 mod common;
 
-use common::spec_model;
 use common::trees::{ALL_KINDS, ROTOR};
+use common::{spec_error, spec_model};
 use triad::mechanics::{step, Model, State};
 
 fn rotor(friction: f64) -> String {
@@ -119,16 +119,10 @@ fn energy_minus_work_is_exact_with_friction() {
 #[test]
 fn friction_refusals_are_named() {
     let bad = ALL_KINDS.replace("name = \"j1\"", "name = \"j1\"\nfriction = -1.0");
-    let err = triad::spec::Spec::from_str(&bad, triad::spec::Format::Toml, "bad.toml")
-        .and_then(|s| s.lower().map(|_| ()))
-        .map(|()| String::new())
-        .unwrap_or_else(|e| e.to_string());
+    let err = spec_error(&bad);
     assert!(err.contains("friction"), "{err}");
     let bad = rotor(0.1).replace("type = \"revolute\"", "type = \"fixed\"");
-    let err = triad::spec::Spec::from_str(&bad, triad::spec::Format::Toml, "bad.toml")
-        .and_then(|s| s.lower().map(|_| ()))
-        .map(|()| String::new())
-        .unwrap_or_else(|e| e.to_string());
+    let err = spec_error(&bad);
     assert!(err.contains("fixed joints take no friction"), "{err}");
     let (m, _) = spec_model(&rotor(0.5));
     let e = triad::mechanics::supported(m.def())

@@ -7,7 +7,7 @@
 
 mod common;
 
-use common::spec_model;
+use common::{spec_error, spec_model};
 use triad::mechanics::{step, Model, State};
 
 /// A disc (I = 0.04 kg·m² about every axis) on an actuated spherical joint to the world, no
@@ -34,9 +34,9 @@ friction = {c}
     )
 }
 
-/// The rotation angle of the joint (rad), from its quaternion output.
-fn angle(s: &State) -> f64 {
-    let q = &s.outputs().joints[0].q;
+/// The rotation angle of spherical joint `j` (rad), from its quaternion output.
+fn angle(s: &State, j: usize) -> f64 {
+    let q = &s.outputs().joints[j].q;
     let v = (q[1] * q[1] + q[2] * q[2] + q[3] * q[3]).sqrt();
     2.0 * v.atan2(q[0].abs())
 }
@@ -45,7 +45,7 @@ fn run(m: &Model, s: &mut State, steps: usize) -> Vec<f64> {
     (0..steps)
         .map(|_| {
             step(m, s, 1e-3).unwrap();
-            angle(s)
+            angle(s, 0)
         })
         .collect()
 }
@@ -87,7 +87,7 @@ fn a_spherical_joint_slides_above_breakaway_with_exact_energy() {
         step(&m, &mut s, 1e-3).unwrap();
         worst = worst.max((s.outputs().energy - s.outputs().work - e0).abs());
     }
-    let a = angle(&s);
+    let a = angle(&s, 0);
     let want = 0.5 * (0.8 - 0.5) / 0.04 * 0.25;
     // 2 %: while the bristle loads (its first milliseconds) the friction is below C
     let e = s.outputs().energy;
@@ -204,11 +204,7 @@ friction = 0.5
     let mut last = 0.0;
     for i in 0..2000 {
         step(&m, &mut s, 1e-3).unwrap();
-        let q = &s.outputs().joints[1].q;
-        let a = 2.0
-            * (q[1] * q[1] + q[2] * q[2] + q[3] * q[3])
-                .sqrt()
-                .atan2(q[0].abs());
+        let a = angle(&s, 1);
         worst = worst.max(a);
         if i == 999 {
             last = a;
@@ -236,9 +232,6 @@ fn spherical_friction_is_taken_and_its_linear_model_refused_by_name() {
         .to_string();
     assert!(err.contains("spherical with Coulomb friction"), "{err}");
     let bad = socket(0.5).replace("friction = 0.5", "armature = 0.1");
-    let err = triad::spec::Spec::from_str(&bad, triad::spec::Format::Toml, "bad.toml")
-        .and_then(|s| s.lower().map(|_| ()))
-        .map(|()| String::new())
-        .unwrap_or_else(|e| e.to_string());
+    let err = spec_error(&bad);
     assert!(err.contains("spherical joints take no armature"), "{err}");
 }

@@ -33,6 +33,14 @@ pub fn spec_model(text: &str) -> (Model, State) {
     (m, s)
 }
 
+/// The error of a TOML spec text that is refused (reading or lowering it), or "" if accepted.
+pub fn spec_error(text: &str) -> String {
+    triad::spec::Spec::from_str(text, triad::spec::Format::Toml, "bad.toml")
+        .and_then(|s| s.lower().map(|_| ()))
+        .map(|()| String::new())
+        .unwrap_or_else(|e| e.to_string())
+}
+
 /// Runs the `triad` binary with `args` in `cwd` (integration tests only: the binary's path is
 /// known to them, not to the benches and examples that share this module).
 pub fn triad(args: &[&str], cwd: &std::path::Path) -> std::process::Output {

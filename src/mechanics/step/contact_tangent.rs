@@ -35,8 +35,8 @@ use num_dual::Dual64;
 
 type D3 = Vector3<Dual64>;
 
-/// The nodes' change `(δφ, δθ × dᵢ)` under the twist `xi` at nodes `q`.
-fn moved(q: &Nodes, xi: &[f64]) -> Nodes {
+/// The nodes' change `(δφ, δθ × dᵢ)` under the twist `xi` (6) at nodes `q`.
+pub(super) fn moved(q: &Nodes, xi: &[f64]) -> Nodes {
     let (dp, dt) = (read3(xi, 0), read3(xi, 3));
     [dp, dt.cross(&q[1]), dt.cross(&q[2]), dt.cross(&q[3])]
 }

@@ -55,7 +55,7 @@
 #![allow(clippy::needless_range_loop)]
 
 use super::contact::touching_features;
-use super::contact_tangent::{bristle_column, column_share, touching_points};
+use super::contact_tangent::{bristle_column, column_share, moved, touching_points};
 use super::error::StepError;
 use super::increment::coupling_entry;
 use super::joint_loads::Pair;
@@ -152,7 +152,8 @@ impl Tangent {
         let touching = ground
             .map(|g| touching_points(g, ws, h))
             .unwrap_or_default();
-        let mut xi_end = vec![0.0; 6 * nb];
+        // per column: the end's twists and the start's bristles, for the bristles' columns
+        let (mut xi_end, mut ds0) = (vec![0.0; 6 * nb], vec![0.0; 3 * ng]);
         let rotors = rotors(model, ws, h);
         let nf = model.nfric;
         let na = model.narm;
@@ -316,7 +317,7 @@ impl Tangent {
                         }
                     }
                     let ds = &mut self.ds[c * 3 * ng..(c + 1) * 3 * ng];
-                    let ds0 = ds.to_vec();
+                    ds0.copy_from_slice(ds);
                     bristle_column((g, &touching), ws, [xi, &xi_end], &ds0, h, ds);
                 }
                 // δa = Q_{n+1} Y + (Q_{n+1} − Qₙ) ξ − h δv,  δv_{n+1} = δv + (2/h) δa
@@ -663,17 +664,9 @@ fn rotors(model: &Model, ws: &Work, h: f64) -> Vec<Rotor> {
 /// The node perturbations `[δφ, δθ × dᵢ]` of body `b` (zeros for the world) at nodes `q` for
 /// the twist column `xi`.
 fn perturbation(q: &[f64], xi: &[f64], b: Option<usize>) -> [Vec3; 4] {
-    let Some(b) = b else {
-        return [Vec3::zeros(); 4];
-    };
-    let n = body_nodes(q, b);
-    let th = read3(xi, 6 * b + 3);
-    [
-        read3(xi, 6 * b),
-        th.cross(&n[1]),
-        th.cross(&n[2]),
-        th.cross(&n[3]),
-    ]
+    b.map_or([Vec3::zeros(); 4], |b| {
+        moved(&body_nodes(q, b), &xi[6 * b..6 * b + 6])
+    })
 }
 
 /// The rate of a joint's coordinate at nodes `qa`, `qb` along node perturbations `da`, `db`
